@@ -1,0 +1,102 @@
+// Geometry of canonical moves: arc radius, sweep and length, and points along a move.
+#include <cmath>
+#include <numbers>
+
+#include "ncjoule/gcode.hpp"
+
+namespace ncjoule {
+namespace {
+
+// The plane's (first, second, normal) coordinates of a pose, in rs274's axis order:
+// XY -> (x, y, z), YZ -> (y, z, x), XZ -> (z, x, y).
+struct PlaneCoords {
+  double first, second, normal;
+};
+
+PlaneCoords to_plane(const Pose& p, Plane plane) {
+  switch (plane) {
+  case Plane::XY: return {p.x, p.y, p.z};
+  case Plane::YZ: return {p.y, p.z, p.x};
+  case Plane::XZ: return {p.z, p.x, p.y};
+  }
+  return {p.x, p.y, p.z};
+}
+
+void from_plane(Pose& p, Plane plane, const PlaneCoords& c) {
+  switch (plane) {
+  case Plane::XY: p.x = c.first, p.y = c.second, p.z = c.normal; break;
+  case Plane::YZ: p.y = c.first, p.z = c.second, p.x = c.normal; break;
+  case Plane::XZ: p.z = c.first, p.x = c.second, p.y = c.normal; break;
+  }
+}
+
+double lerp(double a, double b, double u) { return a + (b - a) * u; }
+
+} // namespace
+
+ArcGeometry arc_geometry(const CanonCommand& arc) {
+  const PlaneCoords s = to_plane(arc.start, arc.plane);
+  const PlaneCoords e = to_plane(arc.end, arc.plane);
+  const double cf = arc.centre_first, cs = arc.centre_second;
+  ArcGeometry g;
+  g.radius = std::hypot(s.first - cf, s.second - cs);
+  const double a0 = std::atan2(s.second - cs, s.first - cf);
+  const double a1 = std::atan2(e.second - cs, e.first - cf);
+  constexpr double two_pi = 2 * std::numbers::pi;
+  const int turns = std::abs(arc.rotation);
+  double sweep;
+  if (arc.rotation >= 0) { // counter-clockwise: a positive sweep
+    sweep = a1 - a0;
+    while (sweep <= 1e-12) sweep += two_pi;
+    sweep += two_pi * (turns > 0 ? turns - 1 : 0);
+  } else {
+    sweep = a1 - a0;
+    while (sweep >= -1e-12) sweep -= two_pi;
+    sweep -= two_pi * (turns - 1);
+  }
+  // An end point equal to the start is a full circle (the loops above already give 2*pi).
+  g.sweep = sweep;
+  g.axial = e.normal - s.normal;
+  g.length = std::hypot(g.radius * sweep, g.axial);
+  return g;
+}
+
+Pose point_on_move(const CanonCommand& move, double u) {
+  if (move.kind != CanonKind::Arc) {
+    Pose p;
+    p.x = lerp(move.start.x, move.end.x, u);
+    p.y = lerp(move.start.y, move.end.y, u);
+    p.z = lerp(move.start.z, move.end.z, u);
+    p.a = lerp(move.start.a, move.end.a, u);
+    p.b = lerp(move.start.b, move.end.b, u);
+    p.c = lerp(move.start.c, move.end.c, u);
+    return p;
+  }
+  const ArcGeometry g = arc_geometry(move);
+  const PlaneCoords s = to_plane(move.start, move.plane);
+  const PlaneCoords e = to_plane(move.end, move.plane);
+  const double a0 = std::atan2(s.second - move.centre_second, s.first - move.centre_first);
+  // The radius may differ slightly from start to end (within the controller's tolerance):
+  // blend it linearly, as a spiral, so that both end points are hit exactly.
+  const double r1 = std::hypot(e.first - move.centre_first, e.second - move.centre_second);
+  const double r = lerp(g.radius, r1, u);
+  const double angle = a0 + g.sweep * u;
+  PlaneCoords c{move.centre_first + r * std::cos(angle), move.centre_second + r * std::sin(angle),
+                lerp(s.normal, e.normal, u)};
+  if (u >= 1.0) c = e;
+  Pose p;
+  p.a = lerp(move.start.a, move.end.a, u);
+  p.b = lerp(move.start.b, move.end.b, u);
+  p.c = lerp(move.start.c, move.end.c, u);
+  from_plane(p, move.plane, c);
+  return p;
+}
+
+double move_length(const CanonCommand& move) {
+  if (move.kind == CanonKind::Arc) return arc_geometry(move).length;
+  return std::sqrt((move.end.x - move.start.x) * (move.end.x - move.start.x) +
+                   (move.end.y - move.start.y) * (move.end.y - move.start.y) +
+                   (move.end.z - move.start.z) * (move.end.z - move.start.z));
+}
+
+} // namespace ncjoule

@@ -1,0 +1,63 @@
+// Internal: one parsed line of G-code.
+//
+// The lexer strips white space and comments, lower-cases the code, and cuts it into words
+// whose values are still unevaluated expression text: values depend on parameters, which change
+// as the program runs, so they are evaluated only when the block executes.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+
+namespace ncjoule::detail {
+
+struct Word {
+  char letter = 0;        // 'a'..'z', or '@' and '^' (LinuxCNC polar radius and angle)
+  int column = 0;         // 1-based column of the letter in the source line
+  std::string_view value; // expression text in Block::code (lower case, no blanks)
+};
+
+// #<index-or-name> = value, applied after every word of the line has been read.
+struct Assignment {
+  std::string_view target; // text after '#': "1", "<name>", "[expr]"
+  std::string_view value;
+  int column = 0;
+};
+
+struct Comment {
+  std::string_view text; // inside the parentheses, or after ';', as written
+  int column = 0;
+};
+
+struct Block {
+  std::string code;         // lower case, blanks and comments removed
+  std::vector<int> columns; // source column (1-based) of each byte of code
+  std::vector<Word> words;
+  std::vector<Assignment> assignments;
+  std::vector<Comment> comments;
+  bool block_delete = false; // line starts with '/'
+  bool percent = false;      // a '%' delimiter line
+  bool dollar = false;       // a grbl '$' settings line
+  // O-word control flow (LinuxCNC) or O-number program header (Fanuc).
+  bool has_o = false;
+  std::string o_label;        // "<name>" or digits, lower case
+  std::string o_keyword;      // sub, endsub, call, if, elseif, else, endif, while, endwhile,
+                              // do, repeat, endrepeat, return, break, continue; empty: header
+  std::string_view o_args;    // the rest of the line after the keyword
+  int o_column = 0;
+  std::vector<Diagnostic> errors; // lexical errors (line numbers filled in by the caller)
+
+  void clear();
+  bool has_code() const { return !words.empty() || !assignments.empty() || has_o; }
+};
+
+// Cuts one source line into a block. `block` is reused to avoid allocations.
+void lex_line(std::string_view line, const Dialect& dialect, Block& block);
+
+// Length of the value expression starting at text[pos] (number, [expr], #param, function[..]).
+// Returns 0 when there is no valid value there.
+std::size_t value_length(std::string_view text, std::size_t pos);
+
+} // namespace ncjoule::detail

@@ -1,0 +1,176 @@
+// Canned drilling cycles (G73, G81, G82, G83, G85, G86, G89), expanded into the moves the
+// machine makes, in the order LinuxCNC's interpreter makes them: rise to the R plane if below
+// it, rapid over the hole, rapid down to R, the cycle's own moves, then retract to the clear
+// height (the R plane under G99; the higher of R and the starting height under G98).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "interpreter_impl.hpp"
+
+namespace ncjoule::detail {
+namespace {
+
+// How far above the last peck a peck cycle rapids back down (rs274ngc: 0.010 inch).
+constexpr double kPeckClearanceInch = 0.010;
+
+struct PlaneAxes {
+  double Pose::*a;
+  double Pose::*b;
+  double Pose::*c; // the drilling axis
+  char a_letter, b_letter, c_letter;
+};
+
+PlaneAxes plane_axes(Plane plane) {
+  switch (plane) {
+  case Plane::XY: return {&Pose::x, &Pose::y, &Pose::z, 'x', 'y', 'z'};
+  case Plane::XZ: return {&Pose::z, &Pose::x, &Pose::y, 'z', 'x', 'y'};
+  case Plane::YZ: return {&Pose::y, &Pose::z, &Pose::x, 'y', 'z', 'x'};
+  }
+  return {&Pose::x, &Pose::y, &Pose::z, 'x', 'y', 'z'};
+}
+
+} // namespace
+
+void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
+  const PlaneAxes ax = plane_axes(state_.plane);
+  const int col = v.column['g' - 'a'] ? v.column['g' - 'a'] : v.column[ax.a_letter - 'a'];
+  const double u = unit();
+  if (v.has('r')) cycle_r_ = *v['r'], have_cycle_r_ = true;
+  if (v.has(ax.c_letter)) cycle_z_ = *v[ax.c_letter], have_cycle_z_ = true;
+  if (v.has('q')) cycle_q_ = *v['q'];
+  if (v.has('p')) cycle_p_ = *v['p'];
+  if (!have_cycle_r_) {
+    error(col, "canned cycle without an R word (retract plane): skipped");
+    return;
+  }
+  if (!have_cycle_z_) {
+    error(col, std::string("canned cycle without a ") + char(std::toupper(ax.c_letter)) +
+                   " word (bottom of the hole): skipped");
+    return;
+  }
+  if (state_.feed <= 0) error(col, "canned cycle with no feed rate (F word missing)");
+  const double old_c = pos_.*ax.c;
+  double r = cycle_r_ * u;
+  double bottom = cycle_z_ * u;
+  if (incremental_) {
+    r += cycle_initial_height_; // R is relative to the height the series started from,
+    bottom += r;                // the bottom relative to R.
+  }
+  if (r < bottom) {
+    error(col, std::string("R is below ") + char(std::toupper(ax.c_letter)) +
+                   " in a canned cycle: skipped");
+    return;
+  }
+  int repeats = 1;
+  if (v.has('l')) {
+    repeats = int(std::lround(*v['l']));
+    if (repeats < 0) error(v.column['l' - 'a'], "L must not be negative"), repeats = 0;
+  }
+  double q = cycle_q_ * u;
+  if ((cycle == Motion::G83 || cycle == Motion::G73) && q <= 0) {
+    error(col, "peck cycle needs a positive Q (peck depth): drilled in one go");
+    q = r - bottom;
+  }
+  double dwell = cycle_p_;
+  if (dialect_.dwell_p_in_ms) dwell /= 1000.0;
+  const double clear = retract_to_r_ ? r : std::max(r, old_c);
+  const double peck_clearance = state_.inch ? kPeckClearanceInch * 25.4 : kPeckClearanceInch * 25.4;
+
+  auto at = [&](double a, double b, double c) {
+    Pose p = pos_;
+    p.*ax.a = a, p.*ax.b = b, p.*ax.c = c;
+    return p;
+  };
+  auto traverse = [&](double a, double b, double c) {
+    straight(CanonKind::Traverse, at(a, b, c));
+  };
+  auto feed = [&](double a, double b, double c) { straight(CanonKind::Feed, at(a, b, c)); };
+
+  double a = pos_.*ax.a, b = pos_.*ax.b;
+  double hole_a = v.has(ax.a_letter) ? *v[ax.a_letter] * u : a;
+  double hole_b = v.has(ax.b_letter) ? *v[ax.b_letter] * u : b;
+  double step_a = 0, step_b = 0;
+  if (incremental_) {
+    step_a = v.has(ax.a_letter) ? *v[ax.a_letter] * u : 0;
+    step_b = v.has(ax.b_letter) ? *v[ax.b_letter] * u : 0;
+  }
+  double height = old_c;
+  if (height < r) {
+    traverse(a, b, r);
+    height = r;
+  }
+  const bool polar = state_.plane == Plane::XY && (v.has('@') || v.has('^'));
+  for (int i = 0; i < repeats && !finished_; ++i) {
+    if (polar) {
+      // Polar hole positions (LinuxCNC): under G91 each repeat adds @ and ^ to the last hole's
+      // radius and angle about the origin, e.g. a bolt circle with "G91 G81 ^60 L6".
+      const double r0 = std::hypot(a, b), t0 = std::atan2(b, a) * 180.0 / std::numbers::pi;
+      double r = v.has('@') ? *v['@'] * u : r0, t = v.has('^') ? *v['^'] : t0;
+      if (incremental_) {
+        r = r0 + (v.has('@') ? *v['@'] * u : 0.0);
+        t = t0 + (v.has('^') ? *v['^'] : 0.0);
+      }
+      a = r * std::cos(t * std::numbers::pi / 180.0);
+      b = r * std::sin(t * std::numbers::pi / 180.0);
+    } else if (incremental_) {
+      a += step_a;
+      b += step_b;
+    } else {
+      a = hole_a;
+      b = hole_b;
+    }
+    traverse(a, b, height);
+    if (height != r) traverse(a, b, r);
+    switch (cycle) {
+    case Motion::G81:
+      feed(a, b, bottom);
+      traverse(a, b, clear);
+      break;
+    case Motion::G82:
+      feed(a, b, bottom);
+      emit_simple(CanonKind::Dwell, dwell);
+      traverse(a, b, clear);
+      break;
+    case Motion::G83:
+    case Motion::G73: {
+      // G83 retracts to R after every peck; G73 only backs off to break the chip.
+      double depth = r - q;
+      for (; depth > bottom; depth -= q) {
+        feed(a, b, depth);
+        if (cycle == Motion::G83) traverse(a, b, r);
+        traverse(a, b, depth + peck_clearance);
+      }
+      feed(a, b, bottom);
+      traverse(a, b, clear);
+      break;
+    }
+    case Motion::G85:
+      feed(a, b, bottom);
+      feed(a, b, r);
+      if (clear > r) traverse(a, b, clear);
+      break;
+    case Motion::G86: {
+      feed(a, b, bottom);
+      emit_simple(CanonKind::Dwell, dwell);
+      const SpindleDir dir = state_.spindle;
+      state_.spindle = SpindleDir::Off;
+      emit_simple(CanonKind::SpindleStop);
+      traverse(a, b, clear);
+      state_.spindle = dir;
+      emit_simple(dir == SpindleDir::CounterClockwise ? CanonKind::SpindleCounterClockwise
+                                                      : CanonKind::SpindleClockwise);
+      break;
+    }
+    case Motion::G89:
+      feed(a, b, bottom);
+      emit_simple(CanonKind::Dwell, dwell);
+      feed(a, b, clear);
+      break;
+    default: break;
+    }
+    height = clear;
+  }
+}
+
+} // namespace ncjoule::detail

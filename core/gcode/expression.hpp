@@ -1,0 +1,27 @@
+// Internal: evaluation of G-code values and [ ] expressions (LinuxCNC and Fanuc macro syntax).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace ncjoule::detail {
+
+// Where an expression reads its parameters from.
+class ParameterReader {
+public:
+  virtual ~ParameterReader() = default;
+  // Returns false with `error` set when the parameter does not exist or cannot be read.
+  virtual bool read(int index, double& value, std::string& error) = 0;
+  virtual bool read(std::string_view name, double& value, std::string& error) = 0;
+  virtual bool exists(std::string_view name) = 0;
+};
+
+// Evaluates `text` (lower case, no blanks), e.g. "-1.5", "[#1*2]", "#<depth>", "sin[30]".
+// Returns false with a message on error; `offset` is then the position of the problem.
+bool evaluate(std::string_view text, ParameterReader& params, double& value, std::string& error,
+              std::size_t& offset);
+
+// Fast path for plain numbers ("12", "-.5", "+3."); false when text is not one.
+bool parse_plain_number(std::string_view text, double& value);
+
+} // namespace ncjoule::detail

@@ -1,0 +1,233 @@
+// Lexing one line of G-code into words, parameter assignments, comments and O-words.
+#include <cctype>
+#include <cstring>
+
+#include "block.hpp"
+
+namespace ncjoule::detail {
+namespace {
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+bool is_letter(char c) { return c >= 'a' && c <= 'z'; }
+
+// Unary functions that may stand where a value is expected (LinuxCNC), e.g. "x abs[#1]".
+constexpr const char* kFunctions[] = {"abs", "acos", "asin", "atan", "cos",   "exp", "fix",
+                                      "fup", "ln",   "round", "sin", "sqrt", "tan", "exists"};
+
+std::size_t bracket_length(std::string_view t, std::size_t pos) {
+  // t[pos] == '['; returns the length up to and including the matching ']', or 0.
+  int depth = 0;
+  for (std::size_t i = pos; i < t.size(); ++i) {
+    if (t[i] == '[') ++depth;
+    else if (t[i] == ']' && --depth == 0) return i - pos + 1;
+  }
+  return 0;
+}
+
+void add_error(Block& b, int column, std::string message) {
+  b.errors.push_back(Diagnostic{Severity::Error, {}, 0, column, std::move(message)});
+}
+
+} // namespace
+
+void Block::clear() {
+  code.clear();
+  columns.clear();
+  words.clear();
+  assignments.clear();
+  comments.clear();
+  block_delete = percent = dollar = has_o = false;
+  o_label.clear();
+  o_keyword.clear();
+  o_args = {};
+  o_column = 0;
+  errors.clear();
+}
+
+std::size_t value_length(std::string_view t, std::size_t pos) {
+  if (pos >= t.size()) return 0;
+  const char c = t[pos];
+  if (c == '+' || c == '-') {
+    std::size_t n = value_length(t, pos + 1);
+    return n ? n + 1 : 0;
+  }
+  if (is_digit(c) || c == '.') {
+    std::size_t i = pos;
+    bool digits = false;
+    while (i < t.size() && is_digit(t[i])) ++i, digits = true;
+    if (i < t.size() && t[i] == '.') {
+      ++i;
+      while (i < t.size() && is_digit(t[i])) ++i, digits = true;
+    }
+    return digits ? i - pos : 0;
+  }
+  if (c == '[') return bracket_length(t, pos);
+  if (c == '#') {
+    if (pos + 1 < t.size() && t[pos + 1] == '<') {
+      std::size_t close = t.find('>', pos + 2);
+      return close == std::string_view::npos ? 0 : close - pos + 1;
+    }
+    std::size_t n = value_length(t, pos + 1);
+    return n ? n + 1 : 0;
+  }
+  if (is_letter(c)) {
+    for (const char* f : kFunctions) {
+      const std::size_t len = std::strlen(f);
+      if (t.compare(pos, len, f) == 0 && pos + len < t.size() && t[pos + len] == '[') {
+        std::size_t n = bracket_length(t, pos + len);
+        if (!n) return 0;
+        std::size_t end = pos + len + n;
+        // ATAN[y]/[x]
+        if (len == 4 && t.compare(pos, 4, "atan") == 0 && end + 1 < t.size() && t[end] == '/' &&
+            t[end + 1] == '[') {
+          std::size_t m = bracket_length(t, end + 1);
+          if (!m) return 0;
+          end += 1 + m;
+        }
+        return end - pos;
+      }
+    }
+  }
+  return 0;
+}
+
+void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
+  b.clear();
+  std::size_t i = 0;
+  const std::size_t n = line.size();
+  while (i < n && (line[i] == ' ' || line[i] == '\t')) ++i;
+  if (i < n && line[i] == '/') {
+    b.block_delete = true;
+    ++i;
+  }
+  if (dialect.dollar_lines && i < n && line[i] == '$') {
+    b.dollar = true;
+    return;
+  }
+  // Strip comments and blanks; lower-case the rest.
+  b.code.reserve(n);
+  b.columns.reserve(n);
+  while (i < n) {
+    const char c = line[i];
+    if (c == ' ' || c == '\t') {
+      ++i;
+    } else if (c == '(' && dialect.paren_comments) {
+      std::size_t close = line.find(')', i + 1);
+      if (dialect.nested_paren_comments) {
+        int depth = 0;
+        close = std::string_view::npos;
+        for (std::size_t k = i; k < n; ++k) {
+          if (line[k] == '(') ++depth;
+          else if (line[k] == ')' && --depth == 0) {
+            close = k;
+            break;
+          }
+        }
+      }
+      if (close == std::string_view::npos) {
+        add_error(b, int(i) + 1, "comment is not closed: expected ')' before the end of the line");
+        b.comments.push_back({line.substr(i + 1), int(i) + 1});
+        break;
+      }
+      b.comments.push_back({line.substr(i + 1, close - i - 1), int(i) + 1});
+      i = close + 1;
+    } else if (c == ';' && dialect.semicolon_comments) {
+      b.comments.push_back({line.substr(i + 1), int(i) + 1});
+      break;
+    } else {
+      b.code.push_back(char(std::tolower(static_cast<unsigned char>(c))));
+      b.columns.push_back(int(i) + 1);
+      ++i;
+    }
+  }
+  const std::string_view code = b.code;
+  if (code == "%") {
+    b.percent = true;
+    return;
+  }
+  std::size_t p = 0;
+  // N number first: skipped (it is a label, not a command).
+  auto skip_n = [&] {
+    if (p < code.size() && code[p] == 'n') {
+      std::size_t q = p + 1;
+      while (q < code.size() && (is_digit(code[q]) || code[q] == '.')) ++q;
+      if (q > p + 1) p = q;
+    }
+  };
+  skip_n();
+  if (p < code.size() && code[p] == 'o' && p + 1 < code.size() &&
+      (code[p + 1] == '<' || is_digit(code[p + 1]) || code[p + 1] == '[')) {
+    b.has_o = true;
+    b.o_column = b.columns[p];
+    std::size_t q = p + 1;
+    if (code[q] == '<') {
+      std::size_t close = code.find('>', q);
+      if (close == std::string_view::npos) {
+        add_error(b, b.columns[q], "O-word name is not closed: expected '>'");
+        return;
+      }
+      b.o_label = std::string(code.substr(q, close - q + 1));
+      q = close + 1;
+    } else if (code[q] == '[') {
+      std::size_t len = bracket_length(code, q);
+      if (!len) {
+        add_error(b, b.columns[q], "O-word expression is not closed: expected ']'");
+        return;
+      }
+      b.o_label = std::string(code.substr(q, len));
+      q += len;
+    } else {
+      while (q < code.size() && is_digit(code[q])) ++q;
+      // Numbers are labels: o0100 and o100 are the same.
+      std::string digits(code.substr(p + 1, q - p - 1));
+      std::size_t nz = digits.find_first_not_of('0');
+      b.o_label = nz == std::string::npos ? "0" : digits.substr(nz);
+    }
+    std::size_t k = q;
+    while (k < code.size() && is_letter(code[k])) ++k;
+    b.o_keyword = std::string(code.substr(q, k - q));
+    b.o_args = code.substr(k);
+    return;
+  }
+  while (p < code.size()) {
+    const char c = code[p];
+    if (is_letter(c) || c == '@' || c == '^') {
+      std::size_t len = value_length(code, p + 1);
+      if (len == 0) {
+        add_error(b, b.columns[p],
+                  std::string("expected a number or [expression] after word '") +
+                      char(std::toupper(c)) + "'");
+        return;
+      }
+      b.words.push_back({c, b.columns[p], code.substr(p + 1, len)});
+      p += 1 + len;
+    } else if (c == '#') {
+      // Parameter assignment: #target=value
+      std::size_t t0 = p + 1, t1 = t0;
+      if (t1 < code.size() && code[t1] == '<') {
+        std::size_t close = code.find('>', t1);
+        t1 = close == std::string_view::npos ? code.size() : close + 1;
+      } else {
+        std::size_t len = value_length(code, t1);
+        t1 += len;
+      }
+      if (t1 >= code.size() || code[t1] != '=' || t1 == t0) {
+        add_error(b, b.columns[p], "expected '#parameter=value'");
+        return;
+      }
+      std::size_t len = value_length(code, t1 + 1);
+      if (len == 0) {
+        add_error(b, t1 + 1 < code.size() ? b.columns[t1 + 1] : b.columns[t1],
+                  "expected a value after '='");
+        return;
+      }
+      b.assignments.push_back({code.substr(t0, t1 - t0), code.substr(t1 + 1, len), b.columns[p]});
+      p = t1 + 1 + len;
+    } else {
+      add_error(b, b.columns[p], std::string("unexpected character '") + c + "'");
+      return;
+    }
+  }
+}
+
+} // namespace ncjoule::detail

@@ -1,0 +1,248 @@
+// ncjoule stage 1: G-code source, dialects and the interpreter.
+//
+// The interpreter reads NC text and emits *canonical commands*, in the manner of LinuxCNC's
+// split between its rs274ngc interpreter and the "canonical machining functions" it calls:
+// rapid, linear feed, arc or helix, dwell, tool change, spindle, coolant, program end.
+// Canned cycles, subprograms and control flow are expanded here, so later stages see only
+// motion and machine state.
+//
+// Units: positions are stored in millimetres and degrees, in the program's work coordinate
+// system (G5x, G92 and tool length offsets are reported as separate commands, as rs274 does).
+// Every command carries the index of the source line it came from.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ncjoule {
+
+// ---------------------------------------------------------------------------------------------
+// Source text
+// ---------------------------------------------------------------------------------------------
+
+// One physical line of the source: [begin, begin + length) holds the text, the following
+// eol_length bytes its line ending ("\n", "\r\n", "\r" or none on the last line).
+struct LineSpan {
+  std::size_t begin = 0;
+  std::size_t length = 0;
+  std::uint8_t eol_length = 0;
+};
+
+// An NC file held in memory, byte for byte, with the position of every line.
+struct SourceFile {
+  std::string path; // as given by the user; used in diagnostics
+  std::string text; // exact bytes
+  std::vector<LineSpan> lines;
+
+  std::string_view line_text(std::size_t index) const {
+    const LineSpan& l = lines[index];
+    return std::string_view(text).substr(l.begin, l.length);
+  }
+};
+
+// Splits text into lines; never fails.
+SourceFile make_source(std::string path, std::string text);
+
+// ---------------------------------------------------------------------------------------------
+// Diagnostics
+// ---------------------------------------------------------------------------------------------
+
+enum class Severity { Note, Warning, Error };
+
+struct Diagnostic {
+  Severity severity = Severity::Error;
+  std::string file;
+  int line = 0;   // 1-based
+  int column = 0; // 1-based, 0 when the whole line is meant
+  std::string message;
+};
+
+// "file:line:column: error: message"
+std::string format_diagnostic(const Diagnostic& d);
+
+// ---------------------------------------------------------------------------------------------
+// Dialects: how a controller family writes G-code, as data.
+// ---------------------------------------------------------------------------------------------
+
+struct Dialect {
+  std::string name;               // "linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens"
+  bool paren_comments = true;     // ( ... )
+  bool semicolon_comments = true; // ; to end of line
+  bool nested_paren_comments = false;
+  bool dwell_p_in_ms = false;            // G4 P in milliseconds (Fanuc/Haas with integer P)
+  bool dwell_p_integer_is_ms = false;    // P without a decimal point is ms, with one is s
+  bool dwell_x_word = false;             // G4 X<seconds> accepted
+  bool decimal_point_optional_ms = false;// bare integers mean 1/1000 mm (Fanuc without G-code setting)
+  bool o_word_subroutines = false;       // LinuxCNC o<name> sub/call/if/while
+  bool fanuc_subprograms = false;        // M98 P.. L.. / M99 within one file
+  bool haas_local_subprograms = false;   // M97 P<N-number>
+  bool g65_macro_calls = false;          // G65 P<program> with arguments
+  bool dollar_lines = false;             // grbl's $ settings lines are ignored
+  bool upper_case_comments = false;      // annotate in upper case (Fanuc family)
+  bool retract_to_r_by_default = false;  // initial G98/G99 state
+  std::size_t max_line_length = 0;       // 0: no limit
+  std::string comment_open = "(";        // what the annotator writes
+  std::string comment_close = ")";
+};
+
+// The built-in dialects; unknown names give std::nullopt.
+std::optional<Dialect> find_dialect(std::string_view name);
+std::vector<std::string> dialect_names();
+// Guesses the dialect from the text (O-number headers, M98, grbl $ lines, o-words, ...).
+// Returns "linuxcnc" when nothing is clear.
+Dialect detect_dialect(const SourceFile& source);
+
+// ---------------------------------------------------------------------------------------------
+// Canonical commands
+// ---------------------------------------------------------------------------------------------
+
+struct Pose {
+  double x = 0, y = 0, z = 0; // mm
+  double a = 0, b = 0, c = 0; // degrees
+};
+
+enum class Plane : std::uint8_t { XY, YZ, XZ }; // G17, G19, G18
+enum class FeedMode : std::uint8_t { UnitsPerMinute, InverseTime, UnitsPerRevolution }; // G94/93/95
+enum class SpindleDir : std::uint8_t { Off, Clockwise, CounterClockwise };
+enum class PathMode : std::uint8_t { ExactStop, ExactPath, Continuous }; // G61.1, G61, G64
+
+// Machine state that holds while a command runs: enough for timing and power without
+// replaying the stream.
+struct ModalState {
+  FeedMode feed_mode = FeedMode::UnitsPerMinute;
+  double feed = 0;       // F as programmed, converted to mm where it is a length:
+                         // mm/min (G94), 1/min (G93), mm/rev (G95)
+  double spindle_rpm = 0;
+  SpindleDir spindle = SpindleDir::Off;
+  bool mist = false;
+  bool flood = false;
+  int tool = 0;          // tool in the spindle
+  bool inch = false;     // program units at the time (for printing in program units)
+  PathMode path_mode = PathMode::Continuous;
+  double path_tolerance = 0; // mm, G64 P; 0 = as fast as possible
+  Plane plane = Plane::XY;
+};
+
+enum class CanonKind : std::uint8_t {
+  Traverse,        // G0, and the rapid parts of canned cycles, G28/G30, G53 G0
+  Feed,            // G1 and the feed parts of canned cycles
+  Arc,             // G2/G3, helices included
+  Probe,           // G38.x: timed as a feed
+  Dwell,           // value = seconds
+  SelectTool,      // value = tool number (T word)
+  ChangeTool,      // value = tool number (M6)
+  SetFeedRate,     // value = F (program units/min, as rs274 prints)
+  SetFeedMode,     // state.feed_mode
+  SpindleSpeed,    // value = rpm
+  SpindleClockwise,
+  SpindleCounterClockwise,
+  SpindleStop,
+  MistOn,
+  FloodOn,
+  MistOff,
+  FloodOff,
+  LengthUnits,     // state.inch
+  PlaneSelect,     // state.plane
+  PathControl,     // state.path_mode, state.path_tolerance
+  ToolLengthOffset,// end.z = offset (mm)
+  WorkOffset,      // value = index (1 = G54 ... 9 = G59.3), end = offset (mm)
+  AxisOffset,      // G92: end = offset (mm)
+  ProgramStop,     // M0
+  OptionalStop,    // M1
+  ProgramEnd,      // M2, M30
+  Message,         // text = (MSG,...)
+  Comment,         // text
+  PlannerHint,     // text = the code (e.g. "G187 P3"), value = its main number
+};
+
+struct CanonCommand {
+  CanonKind kind = CanonKind::Comment;
+  int line = 0;      // 0-based source line of the block that produced it
+  int call_line = 0; // 0-based line in the main program whose block led here (a call site, or
+                     // `line` itself outside subprograms)
+  Pose start;        // moves: where the move starts (mm, program coordinates)
+  Pose end;          // moves: where it ends
+  // Arcs: centre in the plane's two axes (X/Y for G17, Y/Z for G19, Z/X for G18), and the
+  // rotation as rs274 prints it: +k = counter-clockwise with k-1 extra full turns, -k clockwise.
+  double centre_first = 0, centre_second = 0;
+  int rotation = 0;
+  Plane plane = Plane::XY;
+  double value = 0;
+  std::string text;
+  ModalState state; // state while this command runs
+};
+
+// Where the interpreter hands its commands: one call per command, in order.
+using CanonSink = std::function<void(const CanonCommand&)>;
+
+// Arc geometry helpers shared by the printer, the planner and removal.
+struct ArcGeometry {
+  double radius = 0;      // mm, in the plane
+  double sweep = 0;       // radians, signed (+ counter-clockwise in the plane's frame)
+  double axial = 0;       // mm, helix rise along the plane's normal
+  double length = 0;      // mm, helix length sqrt((r*theta)^2 + h^2)
+};
+ArcGeometry arc_geometry(const CanonCommand& arc);
+// Point on a move (line or arc) at fraction u in [0, 1] of its parameter.
+Pose point_on_move(const CanonCommand& move, double u);
+// Length of a move's path in mm (linear axes only).
+double move_length(const CanonCommand& move);
+
+// ---------------------------------------------------------------------------------------------
+// Tool table
+// ---------------------------------------------------------------------------------------------
+
+struct ToolEntry {
+  int number = 0;
+  double z_offset = 0;  // mm, tool length
+  double diameter = 0;  // mm
+};
+using ToolTable = std::map<int, ToolEntry>;
+// Reads a LinuxCNC .tbl file ("T1 P1 Z1.5 D0.25 ;comment"); values in the given units.
+// Errors go to diagnostics; the entries that parsed are kept.
+ToolTable parse_tool_table(const SourceFile& file, bool inch, std::vector<Diagnostic>& diagnostics);
+
+// ---------------------------------------------------------------------------------------------
+// The interpreter
+// ---------------------------------------------------------------------------------------------
+
+struct InterpreterOptions {
+  std::optional<Dialect> dialect; // empty: detect from the text
+  ToolTable tools;
+  bool block_delete = false;      // honour '/' (skip those blocks)
+  bool optional_stop = true;      // M1 stops (only recorded; time counts zero)
+  std::size_t max_commands = 0;   // 0: no limit (guards runaway loops)
+  std::size_t max_loop_iterations = 1'000'000; // backward jumps of loops (0: no limit)
+};
+
+struct InterpretResult {
+  Dialect dialect;
+  std::vector<Diagnostic> diagnostics;
+  bool completed = false; // reached program end or end of file without a fatal error
+  std::size_t blocks = 0; // blocks executed
+  std::size_t commands = 0;
+};
+
+// Runs the program and hands every canonical command to sink. Never throws for bad input:
+// problems become diagnostics, and the run stops only where going on would be unsafe.
+InterpretResult interpret(const SourceFile& source, const InterpreterOptions& options,
+                          const CanonSink& sink);
+
+// Convenience: collects the commands.
+struct Toolpath {
+  std::vector<CanonCommand> commands;
+  InterpretResult result;
+};
+Toolpath interpret(const SourceFile& source, const InterpreterOptions& options = {});
+
+// Prints one command the way `rs274 -g` does (without its leading sequence number and N
+// column), in program units with 4 decimals; empty for commands rs274 has no line for.
+std::string format_canon(const CanonCommand& command);
+
+} // namespace ncjoule

@@ -1,0 +1,43 @@
+#include "cli_support.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+
+namespace ncjoule::cli {
+
+std::optional<SourceFile> read_source(const std::string& path) {
+  std::string text;
+  if (path == "-") {
+    std::ostringstream buffer;
+    buffer << std::cin.rdbuf();
+    text = buffer.str();
+  } else {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+      std::cerr << "ncjoule: cannot read " << path << ": no such file or not readable\n";
+      return std::nullopt;
+    }
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (in.bad()) {
+      std::cerr << "ncjoule: error while reading " << path << "\n";
+      return std::nullopt;
+    }
+  }
+  return make_source(path == "-" ? "<stdin>" : path, std::move(text));
+}
+
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
+  for (const Diagnostic& d : diagnostics) std::cerr << format_diagnostic(d) << '\n';
+}
+
+std::optional<Dialect> dialect_from_option(const std::string& name) {
+  if (auto d = find_dialect(name)) return d;
+  std::cerr << "ncjoule: unknown dialect '" << name << "'; known dialects:";
+  for (const std::string& n : dialect_names()) std::cerr << ' ' << n;
+  std::cerr << '\n';
+  return std::nullopt;
+}
+
+} // namespace ncjoule::cli

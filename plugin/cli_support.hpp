@@ -1,0 +1,21 @@
+// Small helpers the subcommands share: reading input files, reporting diagnostics.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+
+namespace ncjoule::cli {
+
+// Reads a file ("-" = standard input) into a SourceFile; prints why on failure.
+std::optional<SourceFile> read_source(const std::string& path);
+
+// Prints diagnostics to stderr, one per line, in file:line:column form.
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
+
+// Looks up a dialect by name, or prints the known names and returns nullopt.
+std::optional<Dialect> dialect_from_option(const std::string& name);
+
+} // namespace ncjoule::cli

@@ -1,0 +1,38 @@
+// ncjoule: predicts the time and energy of a CNC milling program before it runs.
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+#include <spdlog/spdlog.h>
+
+#include "command_registry.hpp"
+
+namespace ncjoule::cli {
+std::vector<SetupFunction>& registry() {
+  static std::vector<SetupFunction> functions;
+  return functions;
+}
+} // namespace ncjoule::cli
+
+int main(int argc, char** argv) {
+  using namespace ncjoule::cli;
+  CLI::App app{"ncjoule: predicts the time and energy of a CNC milling program before it runs"};
+  app.require_subcommand(1);
+  bool verbose = false;
+  app.add_flag("-v,--verbose", verbose, "Log what ncjoule does (to stderr)");
+  spdlog::set_level(spdlog::level::warn);
+  int exit_code = kOk;
+  for (const SetupFunction& setup : registry()) setup(app, exit_code);
+  app.parse_complete_callback([&] {
+    if (verbose) spdlog::set_level(spdlog::level::info);
+  });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? kOk : kUsage;
+  } catch (const std::exception& e) {
+    std::cerr << "ncjoule: internal error: " << e.what() << '\n';
+    return kInternalError;
+  }
+  return exit_code;
+}

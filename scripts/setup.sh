@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs everything ncjoule needs to build and test, from Debian's packages.
+# Usage: scripts/setup.sh            (run as root, or with sudo available)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libtbb-dev libceres-dev libspdlog-dev libfmt-dev doctest-dev
+  libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  linuxcnc-uspace               # rs274, the reference G-code interpreter used by the tests
+  clang libclang-rt-14-dev      # libFuzzer for scripts/fuzz.sh
+  clang-format python3
+)
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ "${#missing[@]}" -gt 0 ]; then
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update
+  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+fi

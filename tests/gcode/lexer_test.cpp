@@ -1,0 +1,100 @@
+// The lexer keeps every byte of a line and cuts its code into words.
+#include <doctest/doctest.h>
+
+#include "block.hpp"
+
+using namespace ncjoule;
+using ncjoule::detail::Block;
+using ncjoule::detail::lex_line;
+
+namespace {
+Block lex(std::string_view line, const char* dialect = "linuxcnc") {
+  Block b;
+  lex_line(line, *find_dialect(dialect), b);
+  return b;
+}
+} // namespace
+
+TEST_CASE("source lines keep their exact bytes and line endings") {
+  const std::string text = "G0 X1\r\n/G1 Y2 \t\n(comment)\rM2";
+  SourceFile f = make_source("t.nc", text);
+  REQUIRE(f.lines.size() == 4);
+  CHECK(f.line_text(0) == "G0 X1");
+  CHECK(f.lines[0].eol_length == 2);
+  CHECK(f.line_text(1) == "/G1 Y2 \t");
+  CHECK(f.lines[1].eol_length == 1);
+  CHECK(f.line_text(2) == "(comment)");
+  CHECK(f.lines[2].eol_length == 1);
+  CHECK(f.line_text(3) == "M2");
+  CHECK(f.lines[3].eol_length == 0);
+  // Re-assembling the lines gives the file back byte for byte.
+  std::string back;
+  for (const LineSpan& l : f.lines) back += text.substr(l.begin, l.length + l.eol_length);
+  CHECK(back == text);
+}
+
+TEST_CASE("words, lower case, blanks inside numbers and comments") {
+  Block b = lex("n10 g1 x1 0.5 Y-.25 (move (fast) ; z9");
+  REQUIRE(b.errors.size() == 0);
+  REQUIRE(b.words.size() == 3);
+  CHECK(b.words[0].letter == 'g');
+  CHECK(b.words[1].value == "10.5"); // LinuxCNC ignores blanks anywhere in code
+  CHECK(b.words[2].letter == 'y');
+  CHECK(b.words[2].value == "-.25");
+  CHECK(b.words[2].column == 15); // the Y, counting from 1
+  REQUIRE(b.comments.size() == 2);
+  CHECK(b.comments[0].text == "move (fast");
+  CHECK(b.comments[1].text == " z9");
+}
+
+TEST_CASE("block delete, percent lines and grbl settings") {
+  CHECK(lex("/G0 X1").block_delete);
+  CHECK(lex("  %  ").percent);
+  CHECK(lex("$110=500", "grbl").dollar);
+  CHECK_FALSE(lex("$110=500").errors.empty()); // not in LinuxCNC
+}
+
+TEST_CASE("expressions, parameters and assignments") {
+  Block b = lex("G1 X[#1 + 2] Y#<depth> Z-sin[30] #5=[#5+1] #<_n> = 3");
+  REQUIRE(b.errors.empty());
+  REQUIRE(b.words.size() == 4);
+  CHECK(b.words[1].value == "[#1+2]");
+  CHECK(b.words[2].value == "#<depth>");
+  CHECK(b.words[3].value == "-sin[30]");
+  REQUIRE(b.assignments.size() == 2);
+  CHECK(b.assignments[0].target == "5");
+  CHECK(b.assignments[0].value == "[#5+1]");
+  CHECK(b.assignments[1].target == "<_n>");
+}
+
+TEST_CASE("O-words and Fanuc program numbers") {
+  Block sub = lex("o<Pocket> sub");
+  CHECK(sub.has_o);
+  CHECK(sub.o_label == "<pocket>");
+  CHECK(sub.o_keyword == "sub");
+  Block call = lex("O0100 call [1] [2.5]");
+  CHECK(call.o_label == "100");
+  CHECK(call.o_keyword == "call");
+  CHECK(call.o_args == "[1][2.5]");
+  Block header = lex("O1234 (PART)", "fanuc");
+  CHECK(header.has_o);
+  CHECK(header.o_keyword.empty());
+}
+
+TEST_CASE("lexical errors carry the column") {
+  Block b = lex("G1 X1 Y");
+  REQUIRE(b.errors.size() == 1);
+  CHECK(b.errors[0].column == 7);
+  Block c = lex("G1 X1 (open");
+  REQUIRE(c.errors.size() == 1);
+  CHECK(c.errors[0].column == 7);
+  Block d = lex("G1 X1 @");
+  REQUIRE(d.errors.size() == 1);
+  CHECK(d.errors[0].message.find('@') != std::string::npos);
+}
+
+TEST_CASE("Fanuc dialect: ';' is not a comment, parentheses are") {
+  Block b = lex("G1 X1 (A;B)", "fanuc");
+  CHECK(b.errors.empty());
+  CHECK(b.comments[0].text == "A;B");
+}

@@ -93,7 +93,7 @@ TEST_CASE("lexical errors carry the column") {
   CHECK(d.errors[0].message.find('@') != std::string::npos);
 }
 
-TEST_CASE("Fanuc dialect: ';' is not a comment, parentheses are") {
+TEST_CASE("Fanuc dialect: a semicolon is not a comment, parentheses are") {
   Block b = lex("G1 X1 (A;B)", "fanuc");
   CHECK(b.errors.empty());
   CHECK(b.comments[0].text == "A;B");

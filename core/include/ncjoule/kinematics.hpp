@@ -1,0 +1,54 @@
+// ncjoule stage 2: kinematics. Turns the canonical command stream into time, block by block, on
+// a described machine (see machine.hpp).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/machine.hpp"
+
+namespace ncjoule {
+
+// One point of the sampled path of a move.
+struct MotionSample {
+  double t_s = 0;        // time since program start
+  double u = 0;          // parameter along the move, 0 at its start, 1 at its end
+  Pose position;         // mm, program coordinates
+  double speed_mm_s = 0; // path speed at this instant
+};
+
+// The timing of one canonical command.
+struct TimedCommand {
+  std::size_t command = 0; // index into Toolpath::commands
+  int line = 0;            // 0-based source line (copied from the command)
+  CanonKind kind = CanonKind::Comment;
+  double start_s = 0;
+  double duration_s = 0;
+  double length_mm = 0;
+  double entry_speed_mm_s = 0;
+  double exit_speed_mm_s = 0;
+  double peak_speed_mm_s = 0;
+  std::vector<MotionSample> samples; // moves only; first at u=0, last at u=1
+  std::string note;                  // e.g. "M0 program stop: counted as zero time"
+};
+
+struct PlanOptions {
+  // Upper bound on the distance between two samples of a move (mm). Removal asks for a
+  // fraction of the tool radius and of its grid spacing; 0 means "only the end points".
+  double max_sample_step_mm = 0;
+  // Upper bound on the time between two samples (s); 0 = none.
+  double max_sample_dt_s = 0;
+};
+
+struct Timeline {
+  std::vector<TimedCommand> commands; // one per canonical command, same order
+  double total_s = 0;
+  std::vector<Diagnostic> diagnostics;
+};
+
+Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& machine,
+              const PlanOptions& options = {});
+
+} // namespace ncjoule

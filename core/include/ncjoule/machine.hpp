@@ -1,0 +1,88 @@
+// ncjoule machine profiles: what a machine can do (kinematics) and what it draws (power).
+//
+// A profile is a TOML file a person can read and edit (samples/machines/*.toml); this header is
+// its in-memory form. All values are in internal units: mm, s, mm/s, mm/s^2, rpm, W.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+
+namespace ncjoule {
+
+enum class Axis : int { X = 0, Y = 1, Z = 2 };
+
+struct AxisLimits {
+  double rapid_mm_s = 0;     // rapid traverse rate
+  double max_feed_mm_s = 0;  // highest programmable feed
+  double accel_mm_s2 = 1000; // 1 m/s^2 unless the profile says otherwise
+  double jerk_mm_s3 = 0;     // 0: no jerk limit (trapezoid even with the S-curve option)
+};
+
+enum class RapidMode { Linear, DogLeg };      // all axes on one line, or each at its own rate
+enum class FeedProfile { Trapezoid, SCurve }; // velocity profile per block
+// How fast a continuous-path (G64) junction between two moves may be taken.
+//  Tolerance: from the angle between the moves and the path tolerance (the blend arc that stays
+//             within the tolerance of the corner, taken at the acceleration limit).
+//  NextFeed:  Pavanaskar's analyzer: each block slows only to the next block's feed, whatever
+//             the angle.
+enum class JunctionRule { Tolerance, NextFeed };
+
+struct Kinematics {
+  std::array<AxisLimits, 3> axes; // X, Y, Z
+  double rotary_rapid_deg_s = 0;  // A/B/C, 0 when the machine has none
+  double rotary_accel_deg_s2 = 0;
+  RapidMode rapid_mode = RapidMode::Linear;
+  FeedProfile feed_profile = FeedProfile::Trapezoid;
+  JunctionRule junction_rule = JunctionRule::Tolerance;
+  double path_tolerance_mm = 0.01;     // junction deviation used under G64 without P
+  bool exact_stop_every_block = false; // every block starts and ends at rest, whatever G64 says
+  double tool_change_s = 0;            // time of one M6
+  double spindle_s_per_1000rpm = 0;    // spindle ramp: seconds per 1000 rpm of speed change
+};
+
+// Pavanaskar Eq. 3.12 constants (per machine, per axis). Units: W, W/(mm/s), W/rpm, W/(mm^3/s).
+struct PavanaskarConstants {
+  double tare_w = 0;
+  double coolant_w = 0;
+  double spindle_ka_w = 0;
+  double spindle_kb_w_per_rpm = 0;
+  std::array<double, 3> move_ka_w{}; // X, Y, Z
+  std::array<double, 3> move_kb_w_per_mm_s{};
+  std::array<double, 3> cut_ka_w{};
+  std::array<double, 3> cut_kb_w_per_mm3_s{};
+};
+
+// Zhou et al. as fitted by Anziani: P = c1 + c2*n + c3*n^c4*MRR. Stored in the thesis's units
+// (kW, rpm, mm^3/s) because that is how the constants are published.
+struct ZhouConstants {
+  double c1_kw = 0, c2_kw_per_rpm = 0, c3 = 0, c4 = 0;
+  // SEC = d1*n^d2 + d3*n/MRR + d4/MRR (J/mm^3); optional second model.
+  double d1 = 0, d2 = 0, d3 = 0, d4 = 0;
+};
+
+enum class PowerModel { Combined, Pavanaskar, Zhou };
+
+struct PowerConstants {
+  PowerModel model = PowerModel::Combined;
+  PavanaskarConstants pavanaskar;
+  ZhouConstants zhou;
+  double tool_change_w = 0; // power drawn during a tool change (above tare)
+  double co2_kg_per_kwh = 0;
+  double price_per_kwh = 0;
+  std::string currency = "EUR";
+};
+
+struct MachineProfile {
+  std::string name;
+  std::string source_path; // file it came from
+  std::string dialect;     // controller dialect name (see gcode.hpp)
+  Kinematics kinematics;
+  PowerConstants power;
+  std::vector<std::string> sources; // where the constants come from, as written in the file
+};
+
+} // namespace ncjoule

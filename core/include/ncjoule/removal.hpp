@@ -1,0 +1,252 @@
+// ncjoule stage 3: material removal. The volume each sampled step of the toolpath removes from
+// the stock, hence the material removal rate (MRR) through every block.
+//
+// Inputs: the tools (shape and size, from a tool table or from the comments CAM posts write), the
+// stock (a box, an STL solid, or the bounding box of the cutting moves) and the timed, sampled
+// path from kinematics. A removal engine holds the stock and removes what a 3-axis tool sweeps
+// between two consecutive samples. The default engine is a Z-dexel grid (every (x, y) column
+// keeps its material as intervals along Z, exact in Z); a voxel engine in the manner of the
+// Anziani thesis sits behind the same interface as a reference.
+//
+// Positions are tool-tip positions in program coordinates (mm), as MotionSample gives them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/kinematics.hpp"
+
+namespace ncjoule {
+
+// ---------------------------------------------------------------------------------------------
+// Tools
+// ---------------------------------------------------------------------------------------------
+
+enum class ToolShape : std::uint8_t {
+  FlatEndMill,
+  BallEndMill,
+  BullNose, // flat bottom with a corner radius
+  Drill,    // conical point of tip_angle_deg (included angle)
+  Chamfer,  // V-bit / chamfer mill: cone of tip_angle_deg, optionally with a flat tip
+};
+
+// A rotating 3-axis tool, described by its profile. The tool is a solid of revolution around a
+// vertical axis through its tip; only its lower envelope matters for removal from above.
+struct Tool {
+  int number = 0;
+  ToolShape shape = ToolShape::FlatEndMill;
+  double diameter_mm = 0;       // cutting diameter
+  double corner_radius_mm = 0;  // bull nose (a ball end mill has diameter/2)
+  double tip_angle_deg = 118;   // drill and chamfer: included angle of the cone
+  double tip_diameter_mm = 0;   // chamfer: diameter of the flat at the tip (0 = pointed)
+  double cutting_length_mm = 0; // flute length above the tip; 0 = unknown
+  double shank_diameter_mm = 0; // 0 = same as diameter_mm
+  std::string description;      // as the source wrote it
+
+  double radius() const { return diameter_mm / 2; }
+  // The widest radius whose lower surface can touch the stock: the cutting radius, or the
+  // shank's when the shank is wider than the cutter (and the cutting length is known).
+  double reach_radius() const;
+  // Height of the tool's lower surface above its tip at radial distance r from its axis
+  // (0 at the tip); +infinity beyond reach_radius().
+  double envelope_height(double r) const;
+  // The inverse: radius of the tool's cross-section at height t above the tip (cutter part
+  // only, capped at radius()); negative below the tip.
+  double section_radius(double t) const;
+};
+
+std::string_view tool_shape_name(ToolShape shape); // "flat end mill", ...
+
+// Checks a tool for sizes removal cannot use (no diameter, corner radius larger than the
+// radius, tip angle outside (0, 180)); empty when it is usable.
+std::string tool_problem(const Tool& tool);
+
+// Reads the tool descriptions CAM posts write into header comments:
+//  - Fusion 360 / HSM: "(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)", with "TAPER=118deg" for
+//    drills (the point angle) and chamfer mills (Fusion's taper angle, measured from the axis:
+//    a 90-degree chamfer mill says TAPER=45deg);
+//  - FreeCAD: a tool controller comment "(TC: 6mm Ball End)" followed by "M6 T2";
+//  - Mastercam: "(1/2 FLAT ENDMILL TOOL - 1 DIA. OFF. - 1 LEN. - 1 DIA. - .5)" and the
+//    "( T1 | 1/2 FLAT ENDMILL | H1 | ... )" form of its newer posts.
+// Sizes are in the program's units (G20 anywhere outside comments means inches) and returned
+// in mm. Comments that look like tool descriptions but cannot be read become warnings.
+std::map<int, Tool> parse_tool_comments(const SourceFile& source,
+                                        std::vector<Diagnostic>& diagnostics);
+
+// One error per tool number that a move uses (state.tool) but `tools` does not define, naming
+// the tool and the first source line that uses it. `file` is used in the diagnostics.
+std::vector<Diagnostic> check_tools_defined(const std::vector<CanonCommand>& commands,
+                                            const std::map<int, Tool>& tools,
+                                            std::string_view file = {});
+
+// ---------------------------------------------------------------------------------------------
+// Stock
+// ---------------------------------------------------------------------------------------------
+
+struct Box3 {
+  double xmin = 0, ymin = 0, zmin = 0;
+  double xmax = 0, ymax = 0, zmax = 0;
+  bool empty() const { return !(xmax > xmin && ymax > ymin && zmax > zmin); }
+};
+
+// What the user asked for. Default: the bounding box of the cutting moves (see
+// default_stock_box).
+struct StockSpec {
+  enum class Kind { Default, Box, Stl } kind = Kind::Default;
+  Box3 box;             // Kind::Box, mm
+  std::string stl_path; // Kind::Stl, mm
+};
+
+// "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm), a path ending in .stl (any case), or "" / "auto"
+// for the default. Returns std::nullopt with *error set when the text is not understood.
+std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* error = nullptr);
+
+// The default stock: the bounding box of the cutting moves (Feed, Arc), extended in X and Y by
+// the radius of the tool making each move, from the lowest tip Z of a cutting move up to the
+// highest Z any cutting move starts or ends at (so a plunge at feed from a clearance plane
+// counts as entering the stock there). Moves whose tool is unknown are left out.
+// std::nullopt when the program has no cutting move.
+std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
+                                      const Timeline& timeline, const std::map<int, Tool>& tools);
+
+struct Triangle {
+  double v[3][3]; // three vertices, x y z
+};
+struct TriangleMesh {
+  std::vector<Triangle> triangles;
+  Box3 bounds() const;
+};
+// Binary or ASCII STL, in mm. On failure returns std::nullopt and sets error.
+std::optional<TriangleMesh> parse_stl(std::string_view bytes, std::string& error);
+std::optional<TriangleMesh> read_stl(const std::string& path, std::string& error);
+
+// The XY grid of columns shared by both engines: column (i, j) has its centre at
+// (x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy). The grid covers the stock's XY bounds exactly.
+struct GridFrame {
+  double x0 = 0, y0 = 0;
+  double dx = 1, dy = 1;
+  int nx = 0, ny = 0;
+  double z0 = 0, z1 = 0; // Z extent of the stock (the voxel engine's layers)
+  std::size_t columns() const { return std::size_t(nx) * std::size_t(ny); }
+  double column_x(int i) const { return x0 + (i + 0.5) * dx; }
+  double column_y(int j) const { return y0 + (j + 0.5) * dy; }
+};
+// A grid over `bounds` whose cells are at most `spacing_mm` wide and tile the bounds exactly.
+GridFrame make_grid(const Box3& bounds, double spacing_mm);
+
+struct ZInterval {
+  double lo = 0, hi = 0;
+};
+
+// A solid the engines can be filled from.
+class StockShape {
+public:
+  virtual ~StockShape() = default;
+  virtual Box3 bounds() const = 0;
+  virtual std::string description() const = 0;
+  // Material along the vertical line through every column centre, as sorted, disjoint
+  // intervals: column c (= j * nx + i) holds intervals[first[c] .. first[c + 1]).
+  virtual void fill_columns(const GridFrame& grid, std::vector<std::uint32_t>& first,
+                            std::vector<ZInterval>& intervals) const = 0;
+};
+std::unique_ptr<StockShape> make_box_stock(const Box3& box, std::string description);
+// Columns are ray-cast vertically against the triangles; a column with an odd number of
+// crossings (an open mesh) drops its last crossing and is counted in *open_columns.
+std::unique_ptr<StockShape> make_mesh_stock(TriangleMesh mesh, std::string description,
+                                            std::size_t* open_columns = nullptr);
+
+// ---------------------------------------------------------------------------------------------
+// Engines
+// ---------------------------------------------------------------------------------------------
+
+enum class EngineKind : std::uint8_t { Dexel, Voxel };
+std::string_view engine_name(EngineKind kind); // "dexel", "voxel"
+
+struct Point3 {
+  double x = 0, y = 0, z = 0;
+};
+
+// Work counters, for benchmarks.
+struct EngineStats {
+  std::uint64_t steps = 0;
+  std::uint64_t columns_visited = 0; // columns inside the tool's footprint, summed over steps
+  std::uint64_t cells_tested = 0;    // dexel: columns whose envelope was computed;
+                                     // voxel: voxels whose centre was tested
+};
+
+class RemovalEngine {
+public:
+  virtual ~RemovalEngine() = default;
+  virtual EngineKind kind() const = 0;
+  // Removes everything the tool sweeps moving in a straight line with its tip from `from` to
+  // `to`, and returns the volume removed (mm^3). Deterministic: the same calls in the same
+  // order give the same result bit for bit, whatever the number of threads.
+  virtual double remove_step(const Tool& tool, const Point3& from, const Point3& to) = 0;
+  virtual double material_volume_mm3() const = 0; // what is left
+  virtual std::size_t memory_bytes() const = 0;
+  virtual const GridFrame& grid() const = 0;
+  virtual const EngineStats& stats() const = 0;
+};
+
+// `grid` is the XY grid; the voxel engine also cuts [grid.z0, grid.z1] into layers of about
+// min(dx, dy).
+std::unique_ptr<RemovalEngine> make_removal_engine(EngineKind kind, const StockShape& stock,
+                                                   const GridFrame& grid);
+
+// ---------------------------------------------------------------------------------------------
+// Running a program
+// ---------------------------------------------------------------------------------------------
+
+struct RemovalOptions {
+  EngineKind engine = EngineKind::Dexel;
+  double grid_mm = 0;                     // 0: default_grid_spacing() of the tools used
+  std::size_t max_columns = 40'000'000;   // the grid is coarsened (with a note) beyond this
+  std::size_t max_voxels = 2'000'000'000; // voxel engine: same, for the number of voxels
+  std::string source_path;                // file name used in diagnostics
+};
+
+// Default grid spacing for a set of tools: the smallest diameter / 120 (60 cells across a
+// radius), kept within [0.01, 1] mm. 0.1 mm for a 12 mm end mill.
+double default_grid_spacing(const std::map<int, Tool>& tools);
+// The max_sample_step_mm to ask the planner for, so that a step is short next to the tool and
+// to the grid: min(grid spacing, smallest tool radius / 4).
+double recommended_sample_step(const std::map<int, Tool>& tools, double grid_mm);
+
+// Removal results for one timed command (parallel to Timeline::commands).
+struct CommandRemoval {
+  // Volume removed between sample i and i+1 of the command (size samples.size() - 1, or 0).
+  std::vector<double> step_volume_mm3;
+  double removed_mm3 = 0;
+  double mrr_mean_mm3_s = 0; // removed_mm3 / duration
+  double mrr_peak_mm3_s = 0; // highest step volume / step time
+  bool collision = false;    // a rapid that removed material
+};
+
+struct RemovalResult {
+  std::vector<CommandRemoval> commands; // parallel to Timeline::commands
+  double removed_mm3 = 0;
+  std::string stock_description;       // which stock was used, e.g. "box ... (from cutting moves)"
+  std::size_t memory_bytes = 0;        // memory held by the stock model
+  std::vector<Diagnostic> diagnostics; // collisions, unknown tools, ...
+  EngineKind engine = EngineKind::Dexel;
+  GridFrame grid;              // the grid used (dx, dy: cell size in mm)
+  double stock_volume_mm3 = 0; // material before the program, as the engine holds it
+  EngineStats stats;
+};
+
+// Plays the timeline on the stock. Moves (Traverse, Feed, Arc, Probe) remove material step by
+// step between consecutive samples; a Traverse that removes material is flagged as a collision
+// with a warning. Moves whose tool is not in `tools` remove nothing, and each such tool gets one
+// error naming it. A stock that cannot be read is an error and nothing is removed.
+RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const Timeline& timeline,
+                               const std::map<int, Tool>& tools, const StockSpec& stock,
+                               const RemovalOptions& options = {});
+
+} // namespace ncjoule

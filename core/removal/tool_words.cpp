@@ -1,0 +1,83 @@
+// Shape words and sizes in CAM tool descriptions.
+#include "tool_words.hpp"
+
+#include <cctype>
+#include <cstdlib>
+#include <regex>
+
+namespace ncjoule::detail {
+namespace {
+
+bool has(std::string_view text, std::string_view word) {
+  return text.find(word) != std::string_view::npos;
+}
+
+} // namespace
+
+std::string to_upper(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    c = char(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::optional<ShapeGuess> guess_shape(std::string_view t) {
+  ShapeGuess g;
+  // Order matters: "BALL END MILL" is a ball, "SPOT DRILL" is a 90-degree drill, and
+  // "CHAMFER" wins over "MILL".
+  if (has(t, "BALL") || has(t, "LOLLIPOP")) {
+    g.shape = ToolShape::BallEndMill;
+  } else if (has(t, "BULL") || has(t, "TORUS") || has(t, "TOROID")) {
+    g.shape = ToolShape::BullNose;
+  } else if (has(t, "CHAMFER") || has(t, "V-BIT") || has(t, "VBIT") || has(t, "V BIT") ||
+             has(t, "V-CUTTER") || has(t, "ENGRAV") || has(t, "TAPERED MILL")) {
+    g.shape = ToolShape::Chamfer;
+    g.default_tip_angle_deg = 90;
+    g.taper_is_half_angle = true;
+  } else if (has(t, "SPOT") || has(t, "COUNTER SINK") || has(t, "COUNTERSINK") || has(t, "CSINK")) {
+    g.shape = ToolShape::Drill;
+    g.default_tip_angle_deg = 90;
+  } else if (has(t, "DRILL")) { // twist drills; a centre drill is read by its point
+    g.shape = ToolShape::Drill;
+  } else if (has(t, "END MILL") || has(t, "ENDMILL") || has(t, "FLAT") || has(t, "FACE") ||
+             has(t, "SLOT") || has(t, "MILL") || has(t, "REAM") || has(t, "BOR") || has(t, "TAP")) {
+    g.shape = ToolShape::FlatEndMill;
+  } else {
+    return std::nullopt;
+  }
+  return g;
+}
+
+std::optional<double> size_in_description(std::string_view t, bool inch) {
+  static const std::regex with_unit(R"((\d+(?:\.\d*)?|\.\d+)\s*(MM|IN\b|INCH|"))");
+  static const std::regex leading(R"(^\s*(?:(\d+)/(\d+)|(\d+(?:\.\d*)?|\.\d+))(?:\s|$|[^\d/]))");
+  std::cmatch m;
+  const char* b = t.data();
+  const char* e = t.data() + t.size();
+  if (std::regex_search(b, e, m, with_unit)) {
+    const double v = std::strtod(m[1].str().c_str(), nullptr);
+    return m[2].str() == "MM" ? v : v * 25.4;
+  }
+  if (std::regex_search(b, e, m, leading)) {
+    double v;
+    if (m[1].matched) {
+      const double den = std::strtod(m[2].str().c_str(), nullptr);
+      if (den == 0) return std::nullopt;
+      v = std::strtod(m[1].str().c_str(), nullptr) / den;
+    } else {
+      v = std::strtod(m[3].str().c_str(), nullptr);
+    }
+    return inch ? v * 25.4 : v;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> angle_in_description(std::string_view t) {
+  static const std::regex angle(R"((\d+(?:\.\d*)?)\s*(?:DEG|\xC2\xB0))");
+  std::cmatch m;
+  if (std::regex_search(t.data(), t.data() + t.size(), m, angle))
+    return std::strtod(m[1].str().c_str(), nullptr);
+  return std::nullopt;
+}
+
+} // namespace ncjoule::detail

@@ -1,0 +1,136 @@
+// The two engines against each other, determinism, air moves and collisions.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <tbb/global_control.h>
+
+#include "fixture.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+
+StockSpec box_stock(const Box3& b) {
+  StockSpec s;
+  s.kind = StockSpec::Kind::Box;
+  s.box = b;
+  return s;
+}
+
+// Several tools and move kinds: a slot with a plunge, a helical entry and a circle, a ball
+// ramp and groove, a drilled hole, a bull nose pass and a V-groove.
+ProgramBuilder mixed_program() {
+  ProgramBuilder p;
+  p.tool(1).feed_rate(400).rapid(0, 0, 5).feed(0, 0, -3).feed(30, 0, -3).rapid(30, 0, 5);
+  p.rapid(45, 10, 5).feed(45, 10, 0).arc(45, 10, -2, 40, 10, +1).arc(45, 10, -2, 40, 10, +1);
+  p.rapid(45, 10, 5);
+  p.tool(2).rapid(0, 15, 5).feed(0, 15, 0).feed(20, 18, -2.5).feed(35, 25, -2.5).rapid(35, 25, 5);
+  p.tool(3).rapid(15, -12, 5).feed(15, -12, -6).rapid(15, -12, 5);
+  p.tool(4).rapid(-5, 30, 5).feed(-5, 30, -1.5).feed(50, 30, -1.2).arc(50, 20, -1.2, 50, 25, -1);
+  p.rapid(50, 20, 5);
+  p.tool(5).rapid(0, -20, 5).feed(0, -20, -1).feed(40, -15, -1.5).rapid(40, -15, 5);
+  return p;
+}
+
+std::map<int, Tool> mixed_tools() {
+  Tool bull = flat_end_mill(4, 8);
+  bull.shape = ToolShape::BullNose;
+  bull.corner_radius_mm = 1.5;
+  Tool vbit = flat_end_mill(5, 6);
+  vbit.shape = ToolShape::Chamfer;
+  vbit.tip_angle_deg = 90;
+  return {{1, flat_end_mill(1, 10)},
+          {2, ball_end_mill(2, 8)},
+          {3, drill(3, 6, 118)},
+          {4, bull},
+          {5, vbit}};
+}
+
+const Box3 kMixedStock{-15, -30, -10, 65, 40, 0};
+
+} // namespace
+
+TEST_CASE("dexel and voxel engines agree on the same program") {
+  const auto tools = mixed_tools();
+  const ProgramBuilder p = mixed_program();
+  const double grid = 0.2; // coarse enough for the voxel engine to run quickly
+  const Timeline tl = constant_speed_timeline(p.commands(), recommended_sample_step(tools, grid));
+  RemovalOptions o;
+  o.grid_mm = grid;
+  const RemovalResult dexel = simulate_removal(p.commands(), tl, tools, box_stock(kMixedStock), o);
+  o.engine = EngineKind::Voxel;
+  const RemovalResult voxel = simulate_removal(p.commands(), tl, tools, box_stock(kMixedStock), o);
+  CHECK(dexel.diagnostics.empty());
+  CHECK(voxel.diagnostics.empty());
+  CHECK(voxel.engine == EngineKind::Voxel);
+  REQUIRE(dexel.removed_mm3 > 1000);
+  const double difference = std::abs(voxel.removed_mm3 - dexel.removed_mm3) / dexel.removed_mm3;
+  report("dexel vs voxel relative difference, whole program", difference);
+  CHECK(difference < 5e-3);
+  // Tool by tool too, where each removes enough to compare.
+  for (std::size_t k = 0; k < dexel.commands.size(); ++k) {
+    const double d = dexel.commands[k].removed_mm3, v = voxel.commands[k].removed_mm3;
+    if (d < 50) continue;
+    CAPTURE(k);
+    report("dexel vs voxel relative difference, command " + std::to_string(k), std::abs(v - d) / d);
+    CHECK(std::abs(v - d) / d < 2e-2);
+  }
+}
+
+TEST_CASE("results are identical run to run and whatever the number of threads") {
+  // A 40 mm face mill on a fine grid: its footprint is large enough to be split over threads.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 40)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(1000).rapid(-25, 0, 5).rapid(-25, 0, -1).feed(65, 5, -1.3);
+  p.arc(65, 45, -1.3, 65, 25, +1).feed(-25, 40, -0.8).rapid(-25, 40, 5);
+  const Box3 stock{0, -10, -5, 40, 50, 0};
+  RemovalOptions o;
+  o.grid_mm = 0.1;
+  const Timeline tl = constant_speed_timeline(p.commands(), 0.5);
+  const RemovalResult a = simulate_removal(p.commands(), tl, tools, box_stock(stock), o);
+  const RemovalResult b = simulate_removal(p.commands(), tl, tools, box_stock(stock), o);
+  RemovalResult one_thread;
+  {
+    tbb::global_control serial(tbb::global_control::max_allowed_parallelism, 1);
+    one_thread = simulate_removal(p.commands(), tl, tools, box_stock(stock), o);
+  }
+  REQUIRE(a.removed_mm3 > 0);
+  CHECK(a.removed_mm3 == b.removed_mm3);
+  CHECK(a.removed_mm3 == one_thread.removed_mm3);
+  for (std::size_t k = 0; k < a.commands.size(); ++k) {
+    CHECK(a.commands[k].step_volume_mm3 == b.commands[k].step_volume_mm3);
+    CHECK(a.commands[k].step_volume_mm3 == one_thread.commands[k].step_volume_mm3);
+  }
+}
+
+TEST_CASE("air moves remove nothing; a rapid through the stock is a collision") {
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(300).rapid(-10, 0, 2).feed(30, 0, 0.5); // feeding above the stock
+  p.rapid(30, 0, -2).rapid(-10, 0, -2);                       // a rapid along Z -2 through it
+  const RemovalResult r = simulate_removal(p.commands(), constant_speed_timeline(p.commands(), 0.1),
+                                           tools, box_stock({0, -10, -5, 20, 10, 0}));
+  CHECK(r.commands[1].removed_mm3 == 0);
+  CHECK_FALSE(r.commands[1].collision);
+  CHECK(r.commands[2].removed_mm3 == 0); // beside the stock
+  CHECK_FALSE(r.commands[2].collision);
+  CHECK(r.commands[3].removed_mm3 == doctest::Approx(20 * 6 * 2).epsilon(2e-3));
+  CHECK(r.commands[3].collision);
+  REQUIRE(r.diagnostics.size() == 1);
+  CHECK(r.diagnostics[0].severity == Severity::Warning);
+  CHECK(r.diagnostics[0].line == p.commands()[3].line + 1);
+  CHECK(r.diagnostics[0].message.find("collision") != std::string::npos);
+}
+
+TEST_CASE("grid and sample step helpers") {
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 12)}, {2, ball_end_mill(2, 3)}};
+  CHECK(default_grid_spacing(tools) == doctest::Approx(3.0 / 120));
+  CHECK(recommended_sample_step(tools, 0.5) == doctest::Approx(1.5 / 4));
+  CHECK(recommended_sample_step(tools, 0.1) == doctest::Approx(0.1));
+  const GridFrame g = make_grid({0, 0, 0, 155, 2, 1}, 0.1);
+  CHECK(g.nx == 1550);
+  CHECK(g.ny == 20);
+  CHECK(g.dx * g.nx == doctest::Approx(155));
+}

@@ -1,0 +1,125 @@
+// Stock: the --stock text, STL files (binary and ASCII), the default box.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "fixture.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+}
+
+} // namespace
+
+TEST_CASE("stock specifications") {
+  std::string error;
+  auto box = parse_stock_spec("box:-10,-5,-20,100,50.5,0", &error);
+  REQUIRE(box);
+  CHECK(box->kind == StockSpec::Kind::Box);
+  CHECK(box->box.xmin == -10);
+  CHECK(box->box.ymax == 50.5);
+  CHECK(box->box.zmax == 0);
+  auto stl = parse_stock_spec("parts/Blank.STL");
+  REQUIRE(stl);
+  CHECK(stl->kind == StockSpec::Kind::Stl);
+  CHECK(stl->stl_path == "parts/Blank.STL");
+  CHECK(parse_stock_spec("")->kind == StockSpec::Kind::Default);
+  CHECK_FALSE(parse_stock_spec("box:1,2,3", &error));
+  CHECK(error.find("six numbers") != std::string::npos);
+  CHECK_FALSE(parse_stock_spec("box:0,0,0,1,1,x", &error));
+  CHECK_FALSE(parse_stock_spec("box:0,0,0,-1,1,1", &error));
+  CHECK_FALSE(parse_stock_spec("cube", &error));
+}
+
+TEST_CASE("STL stock, binary and ASCII") {
+  const std::string dir = temp_dir();
+  const Box3 cube{2, 3, -6, 12, 23, -1}; // 10 x 20 x 5
+  const TriangleMesh mesh = box_mesh(cube);
+  const std::string binary = dir + "/cube_binary.stl", ascii = dir + "/cube_ascii.stl";
+  write_file(binary, binary_stl(mesh));
+  write_file(ascii, ascii_stl(mesh));
+
+  for (const std::string& path : {binary, ascii}) {
+    CAPTURE(path);
+    std::string error;
+    const auto read = read_stl(path, error);
+    REQUIRE(read);
+    CHECK(read->triangles.size() == 12);
+    const Box3 b = read->bounds();
+    CHECK(b.xmin == 2);
+    CHECK(b.zmax == -1);
+
+    // A 4 mm end mill plunging 2 mm into the top of the cube.
+    const std::map<int, Tool> tools{{1, flat_end_mill(1, 4)}};
+    ProgramBuilder p;
+    p.tool(1).feed_rate(100).rapid(7, 13, 5).feed(7, 13, -3).rapid(7, 13, 5);
+    const auto spec = parse_stock_spec(path);
+    REQUIRE(spec);
+    const RemovalResult r =
+        simulate_removal(p.commands(), constant_speed_timeline(p.commands(), 0.05), tools, *spec);
+    CHECK(r.diagnostics.empty());
+    CHECK(r.stock_description.find("STL") != std::string::npos);
+    CHECK(r.stock_volume_mm3 == doctest::Approx(1000).epsilon(1e-9));
+    CHECK(r.removed_mm3 == doctest::Approx(std::numbers::pi * 4 * 2).epsilon(2e-3));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("STL stock with a gap: columns hold two intervals") {
+  TriangleMesh two = box_mesh({0, 0, 0, 10, 10, 2});
+  const TriangleMesh top = box_mesh({0, 0, 3, 10, 10, 5});
+  two.triangles.insert(two.triangles.end(), top.triangles.begin(), top.triangles.end());
+  std::string error;
+  const auto mesh = parse_stl(ascii_stl(two), error);
+  REQUIRE(mesh);
+  const auto stock = make_mesh_stock(*mesh, "two slabs");
+  const Tool t = flat_end_mill(1, 4);
+  for (EngineKind kind : {EngineKind::Dexel, EngineKind::Voxel}) {
+    CAPTURE(engine_name(kind));
+    auto engine = make_removal_engine(kind, *stock, make_grid(stock->bounds(), 0.05));
+    CHECK(engine->material_volume_mm3() == doctest::Approx(400).epsilon(1e-9));
+    const double area = std::numbers::pi * 4;
+    // Into the upper slab only, then through the gap into the lower one.
+    const double v1 = engine->remove_step(t, {5, 5, 6}, {5, 5, 3.5});
+    CHECK(v1 == doctest::Approx(area * 1.5).epsilon(3e-3));
+    const double v2 = engine->remove_step(t, {5, 5, 3.5}, {5, 5, 1});
+    CHECK(v2 == doctest::Approx(area * 1.5).epsilon(3e-3)); // 0.5 of the top slab, 1 of the bottom
+  }
+}
+
+TEST_CASE("default stock: bounding box of the cutting moves") {
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(300).rapid(-50, -50, 20).rapid(0, 0, 1).feed(0, 0, -3);
+  p.feed(40, 0, -3).arc(40, 20, -3, 40, 10, +1).rapid(40, 20, 20);
+  const Timeline tl = constant_speed_timeline(p.commands(), 0.1);
+  const auto box = default_stock_box(p.commands(), tl, tools);
+  REQUIRE(box);
+  CHECK(box->xmin == doctest::Approx(-3));
+  CHECK(box->xmax == doctest::Approx(40 + 10 + 3)); // the arc bulges to x = 50
+  CHECK(box->ymin == doctest::Approx(-3));
+  CHECK(box->ymax == doctest::Approx(23));
+  CHECK(box->zmin == -3);
+  CHECK(box->zmax == 1); // the highest Z a feed move starts from; rapids do not count
+
+  const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
+  CHECK(r.stock_description.find("default") != std::string::npos);
+  CHECK(r.removed_mm3 > 0);
+
+  ProgramBuilder air;
+  air.tool(1).rapid(0, 0, 5).rapid(10, 0, 5);
+  const RemovalResult none = simulate_removal(
+      air.commands(), constant_speed_timeline(air.commands(), 0.1), tools, StockSpec{});
+  CHECK(none.removed_mm3 == 0);
+  REQUIRE(none.diagnostics.size() == 1);
+  CHECK(none.diagnostics[0].severity == Severity::Warning);
+}

@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <exception>
 #include <iostream>
+#include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "command_registry.hpp"
@@ -19,9 +20,12 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log what ncjoule does (to stderr)");
+  // Logs go to stderr: stdout carries the program's output (canon listings, JSON).
+  spdlog::set_default_logger(spdlog::stderr_logger_st("ncjoule"));
   spdlog::set_level(spdlog::level::warn);
   int exit_code = kOk;
-  for (const SetupFunction& setup : registry()) setup(app, exit_code);
+  for (const SetupFunction& setup : registry())
+    setup(app, exit_code);
   app.parse_complete_callback([&] {
     if (verbose) spdlog::set_level(spdlog::level::info);
   });

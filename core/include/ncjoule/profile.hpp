@@ -1,0 +1,38 @@
+// Reading machine profiles (samples/machines/*.toml) into a MachineProfile.
+//
+// A profile that cannot be trusted is refused, never half-read: a missing key, a value of the
+// wrong type, a key whose unit suffix is not one ncjoule knows, or an impossible value (negative
+// acceleration, zero rapid rate) throws ProfileError naming the file, the key and the reason.
+// Keys carry their unit in their name (rapid_mm_min, accel_mm_s2, tool_change_s); values are
+// converted to internal units (mm, s, mm/s, mm/s^2, W) on load. docs/machine-profiles.md lists
+// the keys.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "ncjoule/machine.hpp"
+
+namespace ncjoule {
+
+class ProfileError : public std::runtime_error {
+public:
+  ProfileError(std::string file, std::string key, std::string reason);
+  const std::string& file() const { return file_; }
+  // Dotted path of the offending key ("kinematics.x.accel_mm_s2"); empty for errors of the
+  // whole file (unreadable, not TOML).
+  const std::string& key() const { return key_; }
+  const std::string& reason() const { return reason_; }
+
+private:
+  std::string file_, key_, reason_;
+};
+
+// Parses profile text; `path` is used in error messages and stored as source_path.
+MachineProfile parse_profile(std::string_view text, const std::string& path);
+
+// Reads and parses a profile file.
+MachineProfile load_profile(const std::string& path);
+
+} // namespace ncjoule

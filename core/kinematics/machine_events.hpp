@@ -1,0 +1,32 @@
+// Time taken by the commands that are not moves: dwell, tool change, spindle ramps, stops.
+// Keeps the spindle's running speed from command to command, since a ramp's time depends on
+// the speed it starts from.
+#pragma once
+
+#include <string>
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/machine.hpp"
+
+namespace ncjoule::kinematics_detail {
+
+struct EventTiming {
+  double duration_s = 0;
+  bool stops_motion = false; // the path comes to rest before it (no blending across)
+  std::string note;
+};
+
+class MachineEvents {
+public:
+  explicit MachineEvents(const Kinematics& machine) : machine_(machine) {}
+  EventTiming time(const CanonCommand& command);
+
+private:
+  double ramp_to(double signed_rpm); // seconds to go from the current speed to signed_rpm
+
+  const Kinematics& machine_;
+  double programmed_rpm_ = 0; // last S word
+  double running_rpm_ = 0;    // signed: + clockwise, - counter-clockwise, 0 stopped
+};
+
+} // namespace ncjoule::kinematics_detail

@@ -1,0 +1,34 @@
+// What one move may do: its length, the highest path speed its feed and the machine allow, the
+// path acceleration and jerk the slowest axis along its direction allows, and its tangents at
+// both ends (for the junction speeds between moves).
+#pragma once
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/machine.hpp"
+#include "warnings.hpp"
+
+namespace ncjoule::kinematics_detail {
+
+struct Vec3 {
+  double x = 0, y = 0, z = 0;
+};
+inline double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+struct MoveLimits {
+  double length = 0;    // mm along the path; degrees for a move of rotary axes only
+  double vmax = 0;      // path speed cap (mm/s or deg/s)
+  double accel = 0;     // path acceleration cap
+  double jerk = 0;      // path jerk cap; 0 = none (trapezoid)
+  Vec3 dir_in, dir_out; // unit tangents of the linear axes at the start and end
+  bool rotary_only = false;
+};
+
+// Limits of a Traverse, Feed, Arc or Probe command. Moves too short to matter get length 0.
+MoveLimits move_limits(const CanonCommand& move, const Kinematics& machine, Warnings& warnings);
+
+// Shortest move that takes any time (mm or degrees); shorter ones are points.
+inline constexpr double kMinMoveLength = 1e-9;
+
+} // namespace ncjoule::kinematics_detail

@@ -1,0 +1,61 @@
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "ncjoule/profile.hpp"
+#include "sections.hpp"
+#include "table_reader.hpp"
+
+namespace ncjoule {
+namespace profile_detail {
+
+void read_source(TableReader& table, std::string_view table_name,
+                 std::vector<std::string>& sources) {
+  std::string source = table.string("source");
+  if (source.empty()) table.fail("source", "must say where the values come from");
+  sources.push_back(std::string(table_name) + ": " + source);
+}
+
+} // namespace profile_detail
+
+MachineProfile parse_profile(std::string_view text, const std::string& path) {
+  using namespace profile_detail;
+  toml::table document;
+  try {
+    document = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    throw ProfileError(path, "",
+                       "not valid TOML at line " + std::to_string(where.line) + ", column " +
+                           std::to_string(where.column) + ": " + std::string(e.description()));
+  }
+  TableReader root(document, path, "");
+  MachineProfile profile;
+  profile.source_path = path;
+  profile.name = root.string("name");
+  if (profile.name.empty()) root.fail("name", "must not be empty");
+  profile.dialect = root.string("dialect");
+  if (!find_dialect(profile.dialect)) {
+    std::string known;
+    for (const std::string& name : dialect_names())
+      known += (known.empty() ? "" : ", ") + name;
+    root.fail("dialect",
+              "\"" + profile.dialect + "\" is not a dialect ncjoule knows (" + known + ")");
+  }
+  read_source(root, "profile", profile.sources);
+  profile.kinematics = read_kinematics(root.table("kinematics"), profile.sources);
+  profile.power = read_power(root.table("power"), profile.sources);
+  root.finish();
+  return profile;
+}
+
+MachineProfile load_profile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ProfileError(path, "", "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ProfileError(path, "", "cannot read the file");
+  return parse_profile(text.str(), path);
+}
+
+} // namespace ncjoule

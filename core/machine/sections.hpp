@@ -1,0 +1,23 @@
+// The two halves of a profile: what the machine can do, and what it draws.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ncjoule/machine.hpp"
+#include "table_reader.hpp"
+
+namespace ncjoule::profile_detail {
+
+// [kinematics] with its [kinematics.x], [kinematics.y], [kinematics.z] and optional
+// [kinematics.rotary] tables. Each table's `source` is appended to sources.
+Kinematics read_kinematics(TableReader kinematics, std::vector<std::string>& sources);
+
+// [power] with [power.pavanaskar] and/or [power.zhou], as its `model` needs them.
+PowerConstants read_power(TableReader power, std::vector<std::string>& sources);
+
+// Reads the table's `source` string and records it as "<table>: <source>".
+void read_source(TableReader& table, std::string_view table_name,
+                 std::vector<std::string>& sources);
+
+} // namespace ncjoule::profile_detail

@@ -1,0 +1,163 @@
+#include "table_reader.hpp"
+
+#include <cmath>
+
+#include "ncjoule/profile.hpp"
+
+namespace ncjoule::profile_detail {
+namespace {
+
+std::string unit_list(std::string_view stem, Dimension dimension) {
+  std::string list;
+  for (const UnitSuffix& u : units_of(dimension)) {
+    if (!list.empty()) list += ", ";
+    list += std::string(stem) + "_" + std::string(u.suffix);
+  }
+  return list;
+}
+
+const char* type_name(const toml::node& node) {
+  switch (node.type()) {
+  case toml::node_type::string:
+    return "a string";
+  case toml::node_type::integer:
+    return "an integer";
+  case toml::node_type::floating_point:
+    return "a number";
+  case toml::node_type::boolean:
+    return "a boolean";
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::array:
+    return "an array";
+  default:
+    return "a date or time";
+  }
+}
+
+} // namespace
+
+TableReader::TableReader(const toml::table& table, std::string file, std::string prefix)
+    : table_(table), file_(std::move(file)), prefix_(std::move(prefix)) {}
+
+std::string TableReader::path_of(std::string_view key) const {
+  return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+}
+
+void TableReader::fail(std::string_view key, const std::string& reason) const {
+  throw ProfileError(file_, path_of(key), reason);
+}
+
+const toml::node* TableReader::find(std::string_view key) {
+  const toml::node* node = table_.get(key);
+  if (node) read_.insert(std::string(key));
+  return node;
+}
+
+double TableReader::checked(std::string_view key, const toml::node& node, double factor,
+                            Range range) {
+  std::optional<double> value;
+  if (const auto* i = node.as_integer()) value = static_cast<double>(i->get());
+  if (const auto* f = node.as_floating_point()) value = f->get();
+  if (!value) fail(key, std::string("expected a number, found ") + type_name(node));
+  if (!std::isfinite(*value)) fail(key, "must be a finite number");
+  if (range == Range::Positive && !(*value > 0)) fail(key, "must be greater than zero");
+  if (range == Range::NonNegative && *value < 0) fail(key, "must not be negative");
+  return *value * factor;
+}
+
+std::optional<double> TableReader::optional_quantity(std::string_view stem, Dimension dimension,
+                                                     Range range) {
+  stems_.emplace(std::string(stem), dimension);
+  std::optional<double> result;
+  std::string found_key;
+  for (const UnitSuffix& u : units_of(dimension)) {
+    const std::string key = std::string(stem) + "_" + std::string(u.suffix);
+    const toml::node* node = find(key);
+    if (!node) continue;
+    if (result) fail(key, "given twice, also as '" + path_of(found_key) + "'");
+    result = checked(key, *node, u.to_internal, range);
+    found_key = key;
+  }
+  return result;
+}
+
+double TableReader::quantity(std::string_view stem, Dimension dimension, Range range) {
+  std::optional<double> value = optional_quantity(stem, dimension, range);
+  if (!value) {
+    // Written with a unit ncjoule does not know? Name that key rather than a missing one.
+    for (const auto& [key, node] : table_)
+      if (key.str().starts_with(std::string(stem) + "_"))
+        fail(key.str(), "unknown unit for '" + std::string(stem) + "': write it as one of " +
+                            unit_list(stem, dimension));
+    const std::string first =
+        std::string(stem) + "_" + std::string(units_of(dimension).front().suffix);
+    fail(first, "missing (write it as one of " + unit_list(stem, dimension) + ")");
+  }
+  return *value;
+}
+
+double TableReader::number(std::string_view key, Range range) {
+  const toml::node* node = find(key);
+  if (!node) fail(key, "missing");
+  return checked(key, *node, 1.0, range);
+}
+
+std::string TableReader::string(std::string_view key) {
+  const toml::node* node = find(key);
+  if (!node) fail(key, "missing");
+  const auto* s = node->as_string();
+  if (!s) fail(key, std::string("expected a string, found ") + type_name(*node));
+  return s->get();
+}
+
+bool TableReader::boolean(std::string_view key) {
+  const toml::node* node = find(key);
+  if (!node) fail(key, "missing");
+  const auto* b = node->as_boolean();
+  if (!b) fail(key, std::string("expected true or false, found ") + type_name(*node));
+  return b->get();
+}
+
+std::string TableReader::choice(std::string_view key,
+                                std::initializer_list<std::string_view> words) {
+  std::string value = string(key);
+  std::string list;
+  for (std::string_view w : words) {
+    if (w == value) return value;
+    if (!list.empty()) list += ", ";
+    list += "\"" + std::string(w) + "\"";
+  }
+  fail(key, "\"" + value + "\" is not one of " + list);
+}
+
+TableReader TableReader::table(std::string_view key) {
+  std::optional<TableReader> t = optional_table(key);
+  if (!t) fail(key, "missing table [" + path_of(key) + "]");
+  return *t;
+}
+
+std::optional<TableReader> TableReader::optional_table(std::string_view key) {
+  const toml::node* node = find(key);
+  if (!node) return std::nullopt;
+  const auto* t = node->as_table();
+  if (!t) fail(key, std::string("expected a table, found ") + type_name(*node));
+  return TableReader(*t, file_, path_of(key));
+}
+
+void TableReader::finish() const {
+  for (const auto& [key, node] : table_) {
+    if (read_.count(key.str())) continue;
+    std::string reason = "unknown key";
+    for (const auto& [stem, dimension] : stems_) {
+      if (key.str().starts_with(stem + "_")) {
+        reason =
+            "unknown unit for '" + stem + "': write it as one of " + unit_list(stem, dimension);
+        break;
+      }
+    }
+    fail(key.str(), reason);
+  }
+}
+
+} // namespace ncjoule::profile_detail

@@ -1,0 +1,57 @@
+// Reads one TOML table of a profile strictly: every value read is checked for presence, type,
+// unit and range, and keys nobody read are reported (a misspelt key or an unknown unit would
+// otherwise be silently ignored and a default used instead).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <toml++/toml.h>
+
+#include "units.hpp"
+
+namespace ncjoule::profile_detail {
+
+enum class Range {
+  Positive,    // > 0 (rates, accelerations)
+  NonNegative, // >= 0 (times, powers, "0 = none" values)
+  Any,
+};
+
+class TableReader {
+public:
+  TableReader(const toml::table& table, std::string file, std::string prefix);
+
+  // <stem>_<unit> for one unit of the dimension, converted to internal units.
+  double quantity(std::string_view stem, Dimension dimension, Range range);
+  std::optional<double> optional_quantity(std::string_view stem, Dimension dimension, Range range);
+  // A number whose unit is implied by the model it belongs to (Zhou's c3, c4, d1..d4).
+  double number(std::string_view key, Range range);
+  std::string string(std::string_view key);
+  bool boolean(std::string_view key);
+  // One of the given words (case-sensitive); the error lists them.
+  std::string choice(std::string_view key, std::initializer_list<std::string_view> words);
+
+  TableReader table(std::string_view key);
+  std::optional<TableReader> optional_table(std::string_view key);
+
+  // Throws for the first key that was never read.
+  void finish() const;
+
+  [[noreturn]] void fail(std::string_view key, const std::string& reason) const;
+  std::string path_of(std::string_view key) const;
+
+private:
+  const toml::node* find(std::string_view key);
+  double checked(std::string_view key, const toml::node& node, double factor, Range range);
+
+  const toml::table& table_;
+  std::string file_;
+  std::string prefix_;
+  std::set<std::string, std::less<>> read_;
+  std::map<std::string, Dimension, std::less<>> stems_; // for hints on unknown keys
+};
+
+} // namespace ncjoule::profile_detail

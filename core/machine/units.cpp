@@ -1,0 +1,68 @@
+#include "units.hpp"
+
+#include <array>
+
+namespace ncjoule::profile_detail {
+namespace {
+
+constexpr double kInch = 25.4;
+
+constexpr std::array kSpeed{UnitSuffix{"mm_min", 1.0 / 60}, UnitSuffix{"mm_s", 1.0},
+                            UnitSuffix{"m_min", 1000.0 / 60}, UnitSuffix{"in_min", kInch / 60}};
+constexpr std::array kAcceleration{UnitSuffix{"mm_s2", 1.0}, UnitSuffix{"m_s2", 1000.0},
+                                   UnitSuffix{"in_s2", kInch}};
+constexpr std::array kJerk{UnitSuffix{"mm_s3", 1.0}, UnitSuffix{"m_s3", 1000.0},
+                           UnitSuffix{"in_s3", kInch}};
+constexpr std::array kLength{UnitSuffix{"mm", 1.0}, UnitSuffix{"um", 0.001},
+                             UnitSuffix{"in", kInch}};
+constexpr std::array kTime{UnitSuffix{"s", 1.0}, UnitSuffix{"ms", 0.001}, UnitSuffix{"min", 60.0}};
+constexpr std::array kRampTime{UnitSuffix{"s_per_1000rpm", 1.0}};
+constexpr std::array kAngularSpeed{UnitSuffix{"deg_min", 1.0 / 60}, UnitSuffix{"deg_s", 1.0}};
+constexpr std::array kAngularAccel{UnitSuffix{"deg_s2", 1.0}};
+constexpr std::array kPower{UnitSuffix{"w", 1.0}, UnitSuffix{"kw", 1000.0}};
+constexpr std::array kPowerPerRpm{UnitSuffix{"w_per_rpm", 1.0}, UnitSuffix{"kw_per_rpm", 1000.0}};
+// P = kb * F: a constant per mm/min is 60 times larger per mm/s.
+constexpr std::array kPowerPerSpeed{UnitSuffix{"w_per_mm_s", 1.0}, UnitSuffix{"w_per_mm_min", 60.0},
+                                    UnitSuffix{"w_per_in_min", 60.0 / kInch}};
+constexpr std::array kPowerPerMrr{UnitSuffix{"w_per_mm3_s", 1.0}, UnitSuffix{"w_per_mm3_min", 60.0},
+                                  UnitSuffix{"w_per_cm3_min", 60.0 / 1000}};
+constexpr std::array kKiloWatt{UnitSuffix{"kw", 1.0}};
+constexpr std::array kKiloWattPerRpm{UnitSuffix{"kw_per_rpm", 1.0}};
+
+} // namespace
+
+std::span<const UnitSuffix> units_of(Dimension dimension) {
+  switch (dimension) {
+  case Dimension::Speed:
+    return kSpeed;
+  case Dimension::Acceleration:
+    return kAcceleration;
+  case Dimension::Jerk:
+    return kJerk;
+  case Dimension::Length:
+    return kLength;
+  case Dimension::Time:
+    return kTime;
+  case Dimension::RampTime:
+    return kRampTime;
+  case Dimension::AngularSpeed:
+    return kAngularSpeed;
+  case Dimension::AngularAccel:
+    return kAngularAccel;
+  case Dimension::Power:
+    return kPower;
+  case Dimension::PowerPerRpm:
+    return kPowerPerRpm;
+  case Dimension::PowerPerSpeed:
+    return kPowerPerSpeed;
+  case Dimension::PowerPerMrr:
+    return kPowerPerMrr;
+  case Dimension::KiloWatt:
+    return kKiloWatt;
+  case Dimension::KiloWattPerRpm:
+    return kKiloWattPerRpm;
+  }
+  return {};
+}
+
+} // namespace ncjoule::profile_detail

@@ -1,0 +1,77 @@
+// Commands that are not moves, and properties every timeline must have.
+#include <cmath>
+#include <doctest/doctest.h>
+
+#include "test_helpers.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+TEST_CASE("dwell, tool change, spindle ramps and stops take their time") {
+  const MachineProfile m = round_machine(); // 5 s tool change, 0.5 s per 1000 rpm
+  std::vector<CanonCommand> program{
+      event(CanonKind::Dwell, 2.5),         event(CanonKind::ChangeTool, 3),
+      event(CanonKind::SpindleSpeed, 1000), event(CanonKind::SpindleClockwise),
+      event(CanonKind::SpindleSpeed, 3000), event(CanonKind::SpindleCounterClockwise),
+      event(CanonKind::SpindleStop),        event(CanonKind::ProgramStop),
+      event(CanonKind::OptionalStop),       event(CanonKind::SelectTool, 4)};
+  const Timeline t = plan(program, m);
+  CHECK(t.commands[0].duration_s == doctest::Approx(2.5));
+  CHECK(t.commands[1].duration_s == doctest::Approx(m.kinematics.tool_change_s));
+  CHECK(t.commands[2].duration_s == 0);                    // S before M3: nothing turns yet
+  CHECK(t.commands[3].duration_s == doctest::Approx(0.5)); // 0 -> 1000
+  CHECK(t.commands[4].duration_s == doctest::Approx(1.0)); // 1000 -> 3000
+  CHECK(t.commands[5].duration_s == doctest::Approx(3.0)); // 3000 cw -> 3000 ccw
+  CHECK(t.commands[6].duration_s == doctest::Approx(1.5)); // 3000 -> 0
+  CHECK(t.commands[7].duration_s == 0);
+  CHECK_FALSE(t.commands[7].note.empty());
+  CHECK_FALSE(t.commands[8].note.empty());
+  CHECK(t.commands[9].duration_s == 0);
+}
+
+TEST_CASE("zero-length moves take zero time and keep their two samples") {
+  const Timeline t =
+      plan({feed(at(5, 5), at(5, 5), 600), rapid(at(5, 5), at(5, 5))}, round_machine());
+  for (const TimedCommand& c : t.commands) {
+    CHECK(c.duration_s == 0);
+    REQUIRE(c.samples.size() == 2);
+    CHECK(c.samples.front().u == 0);
+    CHECK(c.samples.back().u == 1);
+  }
+}
+
+TEST_CASE("block times add up to the program time, with no negative or NaN time") {
+  CanonCommand bad_dwell = event(CanonKind::Dwell, std::nan(""));
+  std::vector<CanonCommand> program{rapid(at(0, 0, 10), at(10, 10, 10)),
+                                    event(CanonKind::ChangeTool, 1),
+                                    feed(at(10, 10, 10), at(10, 10, 0), 300),
+                                    feed(at(10, 10, 0), at(40, 10, 0), 0), // F0
+                                    arc(at(40, 10, 0), at(40, 30, 0), 40, 20, -1, 900),
+                                    feed(at(40, 30, 0), at(40, 30, 0), 900),
+                                    bad_dwell,
+                                    event(CanonKind::Dwell, -3),
+                                    feed(at(40, 30, 0), at(0, 0, 0), 1200),
+                                    rapid(at(0, 0, 0), at(0, 0, 50))};
+  const Timeline t = plan(program, round_machine());
+  double sum = 0;
+  for (std::size_t i = 0; i < t.commands.size(); ++i) {
+    const TimedCommand& c = t.commands[i];
+    CHECK(std::isfinite(c.duration_s));
+    CHECK(c.duration_s >= 0);
+    CHECK(c.start_s == doctest::Approx(sum));
+    sum += c.duration_s;
+  }
+  CHECK(t.total_s == doctest::Approx(sum));
+  CHECK_FALSE(t.diagnostics.empty()); // the F0 move is reported
+}
+
+TEST_CASE("rotary-only moves are timed in degrees") {
+  MachineProfile m = round_machine();
+  m.kinematics.rotary_rapid_deg_s = 90;
+  m.kinematics.rotary_accel_deg_s2 = 360;
+  CanonCommand c = feed(at(0, 0), at(0, 0), 1800); // 30 deg/s
+  c.end.a = 90;
+  const Timeline t = plan({c}, m);
+  CHECK(t.commands[0].length_mm == 0);
+  CHECK(t.total_s == doctest::Approx(trapezoid_time(0, 0, 30, 90, 360)));
+}

@@ -1,0 +1,153 @@
+// Look-ahead and junctions: where the path keeps its speed between blocks and where it must slow.
+#include <cmath>
+#include <doctest/doctest.h>
+
+#include "test_helpers.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+
+std::vector<CanonCommand> corner(PathMode mode, double tolerance, double f = 6000) {
+  return {feed(at(0, 0), at(100, 0), f, mode, tolerance),
+          feed(at(100, 0), at(100, 100), f, mode, tolerance)};
+}
+
+// Speed at which a 90-degree corner may be taken with path tolerance `tol`.
+double corner_speed(double accel, double tol) {
+  const double s = std::sqrt(0.5); // sine of half the interior angle
+  return std::sqrt(accel * tol * s / (1 - s));
+}
+
+} // namespace
+
+TEST_CASE("collinear blocks run through at full feed") {
+  std::vector<CanonCommand> program;
+  for (int i = 0; i < 10; ++i)
+    program.push_back(feed(at(25.4 * i, 0), at(25.4 * (i + 1), 0), 762));
+  const Timeline t = plan(program, round_machine());
+  const Timeline single = plan({feed(at(0, 0), at(254, 0), 762)}, round_machine());
+  CHECK(t.total_s == doctest::Approx(single.total_s));
+  for (int i = 0; i + 1 < 10; ++i) {
+    CHECK(t.commands[i].exit_speed_mm_s == doctest::Approx(762.0 / 60));
+    CHECK(t.commands[i + 1].entry_speed_mm_s == t.commands[i].exit_speed_mm_s);
+  }
+}
+
+TEST_CASE("state changes between moves do not stop the path") {
+  std::vector<CanonCommand> program{feed(at(0, 0), at(50, 0), 762), event(CanonKind::Comment),
+                                    event(CanonKind::FloodOn), feed(at(50, 0), at(100, 0), 762)};
+  const Timeline t = plan(program, round_machine());
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(762.0 / 60));
+  CHECK(t.commands[3].entry_speed_mm_s == doctest::Approx(762.0 / 60));
+}
+
+TEST_CASE("a dwell between collinear moves stops the path") {
+  std::vector<CanonCommand> program{feed(at(0, 0), at(50, 0), 762), event(CanonKind::Dwell, 1),
+                                    feed(at(50, 0), at(100, 0), 762)};
+  const Timeline t = plan(program, round_machine());
+  CHECK(t.commands[0].exit_speed_mm_s == 0);
+  CHECK(t.commands[2].entry_speed_mm_s == 0);
+  CHECK(t.total_s == doctest::Approx(1 + 2 * trapezoid_time(0, 0, 12.7, 50, 1000)));
+}
+
+TEST_CASE("90-degree corner under G61 exact path and G61.1 exact stop: stop at the corner") {
+  for (PathMode mode : {PathMode::ExactPath, PathMode::ExactStop}) {
+    const Timeline t = plan(corner(mode, 0), round_machine());
+    CHECK(t.commands[0].exit_speed_mm_s == 0);
+    CHECK(t.total_s == doctest::Approx(2 * trapezoid_time(0, 0, 100, 100, 1000)));
+  }
+}
+
+TEST_CASE("90-degree corner under G64 P: blend within the tolerance at the acceleration limit") {
+  const double tol = 0.02, a = 1000, v = 100;
+  const double vj = corner_speed(a, tol);
+  const Timeline t = plan(corner(PathMode::Continuous, tol), round_machine());
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(vj));
+  CHECK(t.commands[1].entry_speed_mm_s == doctest::Approx(vj));
+  CHECK(t.total_s ==
+        doctest::Approx(trapezoid_time(0, vj, v, 100, a) + trapezoid_time(vj, 0, v, 100, a)));
+  const Timeline stop = plan(corner(PathMode::ExactPath, 0), round_machine());
+  CHECK(t.total_s < stop.total_s);
+}
+
+TEST_CASE("G64 without P uses the profile's path tolerance") {
+  MachineProfile m = round_machine();
+  m.kinematics.path_tolerance_mm = 0.1;
+  const Timeline t = plan(corner(PathMode::Continuous, 0), m);
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(corner_speed(1000, 0.1)));
+}
+
+TEST_CASE("a reversal stops the path") {
+  const Timeline t =
+      plan({feed(at(0, 0), at(10, 0), 600), feed(at(10, 0), at(0, 0), 600)}, round_machine());
+  CHECK(t.commands[0].exit_speed_mm_s == 0);
+}
+
+TEST_CASE("next-feed junctions (Pavanaskar) slow only to the next block's feed") {
+  MachineProfile m = round_machine();
+  m.kinematics.junction_rule = JunctionRule::NextFeed;
+  std::vector<CanonCommand> program = corner(PathMode::Continuous, 0);
+  program[1].state.feed = 600;
+  const Timeline t = plan(program, m);
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(10));
+  CHECK(t.total_s ==
+        doctest::Approx(trapezoid_time(0, 10, 100, 100, 1000) + 100.0 / 10 + 10.0 / 2000));
+}
+
+TEST_CASE("exact stop on every block when the profile says so") {
+  MachineProfile m = round_machine();
+  m.kinematics.exact_stop_every_block = true;
+  const Timeline t = plan({feed(at(0, 0), at(50, 0), 762), feed(at(50, 0), at(100, 0), 762)}, m);
+  CHECK(t.commands[0].exit_speed_mm_s == 0);
+}
+
+TEST_CASE("backward pass: never faster than the machine can stop within the blocks ahead") {
+  // A long fast block, then short collinear blocks, then the end of the path.
+  std::vector<CanonCommand> program{feed(at(0, 0), at(200, 0), 6000)};
+  for (int i = 0; i < 4; ++i)
+    program.push_back(feed(at(200 + 0.1 * i, 0), at(200 + 0.1 * (i + 1), 0), 6000));
+  const Timeline t = plan(program, round_machine());
+  const double a = 1000;
+  // The speed at each junction is what stopping in the distance left allows.
+  for (int i = 0; i < 5; ++i) {
+    const double left = 0.1 * (4 - i);
+    CHECK(t.commands[i].exit_speed_mm_s == doctest::Approx(std::sqrt(2 * a * left)));
+  }
+  // ...and the short blocks together take the time of one deceleration from there.
+  double tail = 0;
+  for (int i = 1; i < 5; ++i)
+    tail += t.commands[i].duration_s;
+  CHECK(tail == doctest::Approx(std::sqrt(2 * a * 0.4) / a));
+}
+
+TEST_CASE("forward pass: a chain of short blocks accelerates as one") {
+  std::vector<CanonCommand> program;
+  for (int i = 0; i < 20; ++i)
+    program.push_back(feed(at(0.5 * i, 0), at(0.5 * (i + 1), 0), 6000));
+  const Timeline t = plan(program, round_machine());
+  // 10 mm in total, rest to rest, peak sqrt(a * L) = 100 mm/s exactly at the middle.
+  CHECK(t.total_s == doctest::Approx(2 * std::sqrt(10.0 / 1000)));
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(std::sqrt(2 * 1000 * 0.5)));
+}
+
+TEST_CASE("a line running tangentially into an arc keeps its speed, in XY and in XZ") {
+  const double f = 1200, v = f / 60;
+  // G17: +X into a counter-clockwise quarter circle around (10, 5).
+  const Timeline xy = plan(
+      {feed(at(0, 0), at(10, 0), f), arc(at(10, 0), at(15, 5), 10, 5, 1, f)}, round_machine());
+  CHECK(xy.commands[0].exit_speed_mm_s == doctest::Approx(v));
+
+  // G18 (first axis Z, second X): +X into a clockwise quarter circle around z=5, x=10.
+  CanonCommand xz = arc(at(10, 0, 0), at(15, 0, 5), 5, 10, -1, f);
+  xz.plane = Plane::XZ;
+  const Timeline t = plan({feed(at(0, 0), at(10, 0), f), xz}, round_machine());
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(v));
+
+  // The same arc the other way round starts against the line: a reversal.
+  xz.rotation = 1;
+  xz.end = at(5, 0, 5);
+  const Timeline reversed = plan({feed(at(0, 0), at(10, 0), f), xz}, round_machine());
+  CHECK(reversed.commands[0].exit_speed_mm_s == 0);
+}

@@ -1,0 +1,167 @@
+// Machine profiles: the shipped samples load with their values in internal units, and a
+// profile that cannot be trusted is refused with the file, the key and the reason.
+#include <doctest/doctest.h>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "ncjoule/profile.hpp"
+
+using namespace ncjoule;
+
+namespace {
+
+std::string sample_path(const std::string& name) {
+  return std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/" + name;
+}
+
+std::string read(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The generic profile with one line replaced (the first line starting with `key`).
+std::string with_line(const std::string& key, const std::string& replacement) {
+  std::istringstream in(read(sample_path("generic-3axis.toml")));
+  std::string out, line;
+  bool done = false;
+  while (std::getline(in, line)) {
+    if (!done && line.rfind(key, 0) == 0) {
+      line = replacement;
+      done = true;
+    }
+    out += line + "\n";
+  }
+  REQUIRE(done);
+  return out;
+}
+
+ProfileError refusal(const std::string& text) {
+  try {
+    parse_profile(text, "bad.toml");
+  } catch (const ProfileError& e) {
+    return e;
+  }
+  FAIL("the profile was accepted");
+  return ProfileError("", "", "");
+}
+
+void check_names_file_and_key(const ProfileError& e, const std::string& key) {
+  CHECK(e.file() == "bad.toml");
+  CHECK(e.key() == key);
+  const std::string what = e.what();
+  CHECK(what.find("bad.toml") != std::string::npos);
+  CHECK(what.find(key) != std::string::npos);
+}
+
+} // namespace
+
+TEST_CASE("every shipped profile loads") {
+  for (const char* name :
+       {"generic-3axis.toml", "haas-vf0-pavanaskar2014.toml", "zhou2017-anziani2025.toml"}) {
+    CAPTURE(name);
+    const MachineProfile m = load_profile(sample_path(name));
+    CHECK_FALSE(m.name.empty());
+    CHECK(m.source_path == sample_path(name));
+    CHECK(m.sources.size() >= 3); // profile, kinematics, power (+ model tables)
+    for (const AxisLimits& a : m.kinematics.axes) {
+      CHECK(a.rapid_mm_s > 0);
+      CHECK(a.accel_mm_s2 > 0);
+      CHECK(a.max_feed_mm_s <= a.rapid_mm_s);
+    }
+  }
+}
+
+TEST_CASE("Haas VF-0 profile: Pavanaskar's timing and constants in internal units") {
+  const MachineProfile m = load_profile(sample_path("haas-vf0-pavanaskar2014.toml"));
+  const double inch_per_min = 25.4 / 60; // mm/s
+  for (const AxisLimits& a : m.kinematics.axes) {
+    CHECK(a.accel_mm_s2 == doctest::Approx(1000)); // 1 m/s^2
+    CHECK(a.rapid_mm_s == doctest::Approx(710 * inch_per_min));
+  }
+  CHECK(m.kinematics.junction_rule == JunctionRule::NextFeed);
+  CHECK(m.kinematics.feed_profile == FeedProfile::Trapezoid);
+  CHECK(m.power.model == PowerModel::Pavanaskar);
+  CHECK(m.power.pavanaskar.tare_w == doctest::Approx(325));
+  CHECK(m.power.pavanaskar.spindle_ka_w == doctest::Approx(24.08));
+  CHECK(m.power.pavanaskar.spindle_kb_w_per_rpm == doctest::Approx(0.22417));
+  // Table 4.1's X move line: 1.8571 W per % of the assumed rapid rate.
+  const double per_percent = m.kinematics.axes[0].rapid_mm_s / 100;
+  CHECK(m.power.pavanaskar.move_kb_w_per_mm_s[0] * per_percent ==
+        doctest::Approx(1.8571).epsilon(1e-3));
+}
+
+TEST_CASE("Zhou profile: Table 1 constants as published") {
+  const MachineProfile m = load_profile(sample_path("zhou2017-anziani2025.toml"));
+  CHECK(m.power.model == PowerModel::Zhou);
+  CHECK(m.power.zhou.c1_kw == doctest::Approx(0.78));
+  CHECK(m.power.zhou.c3 == doctest::Approx(8.06e-7));
+  CHECK(m.power.zhou.d4 == doctest::Approx(779));
+  CHECK(m.kinematics.axes[0].rapid_mm_s == doctest::Approx(1000.0 / 60));
+}
+
+TEST_CASE("units in key names are converted") {
+  MachineProfile m = parse_profile(with_line("rapid_mm_min", "rapid_m_min = 30"), "u.toml");
+  CHECK(m.kinematics.axes[0].rapid_mm_s == doctest::Approx(500));
+  m = parse_profile(with_line("accel_mm_s2", "accel_m_s2 = 2.5"), "u.toml");
+  CHECK(m.kinematics.axes[0].accel_mm_s2 == doctest::Approx(2500));
+  m = parse_profile(with_line("move_kb_w_per_mm_s", "move_kb_w_per_mm_min = 0.01"), "u.toml");
+  CHECK(m.power.pavanaskar.move_kb_w_per_mm_s[0] == doctest::Approx(0.6));
+}
+
+TEST_CASE("a missing key is refused with the file and the key") {
+  const ProfileError e = refusal(with_line("accel_mm_s2", "# no acceleration"));
+  check_names_file_and_key(e, "kinematics.x.accel_mm_s2");
+  CHECK(e.reason().find("missing") != std::string::npos);
+  check_names_file_and_key(refusal(with_line("tool_change_s", "")), "kinematics.tool_change_s");
+  check_names_file_and_key(refusal(with_line("c1_kw", "")), "power.zhou.c1_kw");
+}
+
+TEST_CASE("a negative acceleration is refused") {
+  const ProfileError e = refusal(with_line("accel_mm_s2", "accel_mm_s2 = -1000"));
+  check_names_file_and_key(e, "kinematics.x.accel_mm_s2");
+  CHECK(e.reason().find("greater than zero") != std::string::npos);
+}
+
+TEST_CASE("a zero rapid rate is refused") {
+  check_names_file_and_key(refusal(with_line("rapid_mm_min", "rapid_mm_min = 0")),
+                           "kinematics.x.rapid_mm_min");
+}
+
+TEST_CASE("a value of the wrong type is refused") {
+  const ProfileError e = refusal(with_line("accel_mm_s2", "accel_mm_s2 = \"1 m/s^2\""));
+  check_names_file_and_key(e, "kinematics.x.accel_mm_s2");
+  CHECK(e.reason().find("expected a number") != std::string::npos);
+  check_names_file_and_key(refusal(with_line("rapid_mode", "rapid_mode = \"zigzag\"")),
+                           "kinematics.rapid_mode");
+  check_names_file_and_key(refusal(with_line("dialect", "dialect = \"klingon\"")), "dialect");
+  check_names_file_and_key(
+      refusal(with_line("exact_stop_every_block", "exact_stop_every_block = 1")),
+      "kinematics.exact_stop_every_block");
+}
+
+TEST_CASE("an unknown unit or a misspelt key is refused, not ignored") {
+  ProfileError e = refusal(with_line("rapid_mm_min", "rapid_ft_min = 100"));
+  check_names_file_and_key(e, "kinematics.x.rapid_ft_min");
+  CHECK(e.reason().find("rapid_mm_min") != std::string::npos); // tells what to write instead
+  check_names_file_and_key(
+      refusal(with_line("rapid_mm_min", "rapid_mm_min = 24000\nrapid_mm_s = 400")),
+      "kinematics.x.rapid_mm_s");
+  e = refusal(with_line("tool_change_s", "tool_change_s = 6\ntool_chnage_s = 6"));
+  check_names_file_and_key(e, "kinematics.tool_chnage_s");
+  CHECK(e.reason() == "unknown key");
+}
+
+TEST_CASE("a maximum feed above the rapid rate is refused") {
+  check_names_file_and_key(refusal(with_line("max_feed_mm_min", "max_feed_mm_min = 90000")),
+                           "kinematics.x.max_feed_mm_min");
+}
+
+TEST_CASE("text that is not TOML and files that do not exist name the file") {
+  const ProfileError e = refusal("name = [unclosed");
+  CHECK(e.file() == "bad.toml");
+  CHECK(std::string(e.what()).find("line 1") != std::string::npos);
+  CHECK_THROWS_AS(load_profile("no/such/profile.toml"), ProfileError);
+}

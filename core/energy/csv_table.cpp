@@ -1,0 +1,151 @@
+// Numeric CSV tables for calibration and power logs, with errors that point at the cell.
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "ncjoule/calibrate.hpp"
+
+namespace ncjoule {
+namespace {
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+    s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
+    s.remove_suffix(1);
+  return s;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  // Spreadsheet exports quote their headers.
+  if (out.size() >= 2 && out.front() == '"' && out.back() == '"')
+    out = out.substr(1, out.size() - 2);
+  return out;
+}
+
+struct Field {
+  std::string_view text;
+  int column = 1; // 1-based character column of the field's first character
+};
+
+std::vector<Field> split(std::string_view line, char separator) {
+  std::vector<Field> fields;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = line.find(separator, begin);
+    const std::string_view raw =
+        line.substr(begin, end == std::string_view::npos ? end : end - begin);
+    std::size_t lead = 0;
+    while (lead < raw.size() && std::isspace(static_cast<unsigned char>(raw[lead])))
+      ++lead;
+    fields.push_back({trim(raw), static_cast<int>(begin + lead + 1)});
+    if (end == std::string_view::npos) break;
+    begin = end + 1;
+  }
+  return fields;
+}
+
+bool parse_number(std::string_view text, double& value) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return false;
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(value);
+}
+
+} // namespace
+
+std::optional<std::size_t> NumericCsv::column(std::string_view name) const {
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (columns[i] == name) return i;
+  return std::nullopt;
+}
+
+std::optional<NumericCsv> parse_numeric_csv(std::string path, std::string_view text,
+                                            std::vector<Diagnostic>& diagnostics) {
+  NumericCsv csv;
+  csv.path = std::move(path);
+  auto error = [&](int line, int column, std::string message) {
+    diagnostics.push_back({Severity::Error, csv.path, line, column, std::move(message)});
+  };
+  char separator = ',';
+  bool have_header = false;
+  int line_number = 0;
+  std::size_t pos = 0;
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") pos = 3; // byte-order mark of spreadsheet exports
+  while (pos <= text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    ++line_number;
+    pos = end + 1;
+    if (trim(line).empty() || trim(line).front() == '#') {
+      if (end == text.size()) break;
+      continue;
+    }
+    if (!have_header) {
+      if (line.find(',') == std::string_view::npos && line.find(';') != std::string_view::npos)
+        separator = ';';
+      for (const Field& f : split(line, separator)) {
+        if (f.text.empty()) {
+          error(line_number, f.column, "empty column name in the header");
+          return std::nullopt;
+        }
+        csv.columns.push_back(lower(f.text));
+      }
+      have_header = true;
+    } else {
+      const auto fields = split(line, separator);
+      if (fields.size() != csv.columns.size()) {
+        error(line_number, 0,
+              "expected " + std::to_string(csv.columns.size()) + " fields (" +
+                  std::to_string(csv.columns.size()) + " columns in the header), found " +
+                  std::to_string(fields.size()));
+      } else {
+        std::vector<double> row(fields.size());
+        std::vector<int> columns(fields.size());
+        bool ok = true;
+        for (std::size_t i = 0; i < fields.size(); ++i) {
+          columns[i] = fields[i].column;
+          if (!parse_number(fields[i].text, row[i])) {
+            error(line_number, fields[i].column,
+                  "column '" + csv.columns[i] + "': '" + std::string(fields[i].text) +
+                      "' is not a number");
+            ok = false;
+          }
+        }
+        if (ok) {
+          csv.rows.push_back(std::move(row));
+          csv.row_lines.push_back(line_number);
+          csv.cell_columns.push_back(std::move(columns));
+        }
+      }
+    }
+    if (end == text.size()) break;
+  }
+  if (!have_header) {
+    error(1, 0, "no header line: the file is empty");
+    return std::nullopt;
+  }
+  return csv;
+}
+
+std::optional<NumericCsv> read_numeric_csv(const std::string& path,
+                                           std::vector<Diagnostic>& diagnostics) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    diagnostics.push_back({Severity::Error, path, 0, 0, "cannot open the file"});
+    return std::nullopt;
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_numeric_csv(path, buffer.str(), diagnostics);
+}
+
+} // namespace ncjoule

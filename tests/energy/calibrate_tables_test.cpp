@@ -1,0 +1,119 @@
+// Steady-state fits recover known constants from synthetic readings with noise, within a few
+// of their reported standard errors (fixed seeds).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "ncjoule/calibrate.hpp"
+
+using namespace ncjoule;
+
+namespace {
+
+constexpr double kSigmas = 4.0;
+
+void check_recovered(const FitReport& fit, PowerParameter p, double truth) {
+  CAPTURE(parameter_info(p).key);
+  const FittedConstant* c = fit.find(p);
+  REQUIRE(c != nullptr);
+  CHECK_FALSE(c->held);
+  CHECK(std::isfinite(c->std_error));
+  CHECK(c->std_error > 0);
+  CHECK(std::abs(c->value - truth) <= kSigmas * c->std_error);
+  MESSAGE(parameter_info(p).key << ": fitted " << c->value << " +- " << c->std_error << ", true "
+                                << truth);
+}
+
+} // namespace
+
+TEST_CASE("spindle, axis-motion and cutting lines are recovered from noisy readings") {
+  std::mt19937 rng(20240501);
+  std::normal_distribution<double> noise(0.0, 6.0);
+  PowerConstants known;
+  known.pavanaskar.tare_w = 410;
+  known.pavanaskar.spindle_ka_w = 120;
+  known.pavanaskar.spindle_kb_w_per_rpm = 0.18;
+  known.pavanaskar.move_ka_w = {60, 75, 90};
+  known.pavanaskar.move_kb_w_per_mm_s = {1.2, 2.1, 3.3};
+  const auto& p = known.pavanaskar;
+
+  std::vector<SteadyStateReading> spindle;
+  for (double n = 1000; n <= 8000; n += 500)
+    spindle.push_back(
+        {n, 0, 0, p.tare_w + p.spindle_ka_w + p.spindle_kb_w_per_rpm * n + noise(rng)});
+  const FitReport s = fit_spindle(spindle, p.tare_w);
+  CHECK(s.converged);
+  CHECK(s.r_squared > 0.99);
+  CHECK(s.rmse == doctest::Approx(6.0).epsilon(0.5));
+  check_recovered(s, PowerParameter::SpindleKA, 120);
+  check_recovered(s, PowerParameter::SpindleKB, 0.18);
+
+  std::vector<SteadyStateReading> axis_y;
+  for (double f = 5; f <= 150; f += 10)
+    axis_y.push_back({0, f, 0, p.tare_w + 75 + 2.1 * f + noise(rng)});
+  const FitReport m = fit_axis_move(axis_y, Axis::Y, known);
+  check_recovered(m, PowerParameter::MoveKAY, 75);
+  check_recovered(m, PowerParameter::MoveKBY, 2.1);
+
+  std::vector<SteadyStateReading> cut_z;
+  for (double mrr = 2; mrr <= 60; mrr += 4) {
+    const double rpm = 3000, feed = 2;
+    cut_z.push_back({rpm, feed, mrr,
+                     p.tare_w + p.spindle_ka_w + p.spindle_kb_w_per_rpm * rpm + 90 + 3.3 * feed +
+                         25 + 4.5 * mrr + noise(rng)});
+  }
+  const FitReport c = fit_axis_cut(cut_z, Axis::Z, known);
+  check_recovered(c, PowerParameter::CutKAZ, 25);
+  check_recovered(c, PowerParameter::CutKBZ, 4.5);
+}
+
+TEST_CASE("Zhou's power and SEC models are recovered, all coefficients >= 0") {
+  const ZhouConstants truth{0.78, 0.00017, 8.06e-7, 1.13, 5.39e-6, 1.82, 0.15, 779};
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise_kw(0.0, 0.01);
+  std::vector<SteadyStateReading> readings;
+  for (double n : {500.0, 900.0, 1300.0, 1700.0, 2100.0})
+    for (double mrr : {3.0, 9.0, 18.0, 27.0, 36.0, 42.0, 48.0})
+      readings.push_back({n, 0, mrr, 1000 * (zhou_power_kw(truth, n, mrr) + noise_kw(rng))});
+  REQUIRE(readings.size() == 35);
+  const FitReport power = fit_zhou_power(readings);
+  CHECK(power.converged);
+  CHECK(power.dof == 31);
+  CHECK(power.rmse == doctest::Approx(0.01).epsilon(0.5));
+  check_recovered(power, PowerParameter::ZhouC1, truth.c1_kw);
+  check_recovered(power, PowerParameter::ZhouC2, truth.c2_kw_per_rpm);
+  check_recovered(power, PowerParameter::ZhouC3, truth.c3);
+  check_recovered(power, PowerParameter::ZhouC4, truth.c4);
+  for (const auto& c : power.constants)
+    CHECK(c.value >= 0);
+
+  std::normal_distribution<double> noise_sec(0.0, 1.5);
+  std::vector<SteadyStateReading> sec_readings;
+  for (const auto& r : readings) {
+    const double sec = zhou_sec_model_j_mm3(truth, r.rpm, r.mrr_mm3_s) + noise_sec(rng);
+    sec_readings.push_back({r.rpm, 0, r.mrr_mm3_s, sec * r.mrr_mm3_s});
+  }
+  const FitReport sec = fit_zhou_sec(sec_readings);
+  CHECK(sec.converged);
+  CHECK(sec.r_squared > 0.99);
+  check_recovered(sec, PowerParameter::ZhouD1, truth.d1);
+  check_recovered(sec, PowerParameter::ZhouD2, truth.d2);
+  check_recovered(sec, PowerParameter::ZhouD3, truth.d3);
+  check_recovered(sec, PowerParameter::ZhouD4, truth.d4);
+}
+
+TEST_CASE("Zhou's fit keeps a coefficient at 0 rather than going negative") {
+  // Power falls slightly with speed: unconstrained least squares would give c2 < 0.
+  std::vector<SteadyStateReading> readings;
+  for (double n : {500.0, 1300.0, 2100.0})
+    for (double mrr : {5.0, 20.0, 40.0})
+      readings.push_back({n, 0, mrr, 1000 * (0.9 - 2e-5 * n + 1e-6 * std::pow(n, 1.1) * mrr)});
+  const FitReport fit = fit_zhou_power(readings);
+  const FittedConstant* c2 = fit.find(PowerParameter::ZhouC2);
+  REQUIRE(c2 != nullptr);
+  CHECK(c2->value >= 0);
+  CHECK(c2->value < 1e-9);
+  for (const auto& c : fit.constants)
+    CHECK(c.value >= 0);
+}

@@ -1,0 +1,131 @@
+// CSV errors that point at the cell, measured energy of a log, and the [power] section of a
+// profile written and read back.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <fstream>
+#include <sstream>
+
+#include "ncjoule/calibrate.hpp"
+#include "ncjoule/profile.hpp"
+
+using namespace ncjoule;
+
+TEST_CASE("CSV errors say file, line, column and what is wrong") {
+  std::vector<Diagnostic> d;
+  const auto csv = parse_numeric_csv("spindle.csv",
+                                     "# spindle trial\nrpm,power_w\n3000,1100\n4000, 13x0\n"
+                                     "5000\n6000,-5\n",
+                                     d);
+  REQUIRE(csv);
+  REQUIRE(d.size() == 2);
+  CHECK(d[0].file == "spindle.csv");
+  CHECK(d[0].line == 4);
+  CHECK(d[0].column == 7);
+  CHECK(d[0].message.find("power_w") != std::string::npos);
+  CHECK(d[0].message.find("13x0") != std::string::npos);
+  CHECK(d[1].line == 5);
+  CHECK(d[1].message.find("expected 2 fields") != std::string::npos);
+  const auto readings = readings_from_csv(*csv, kFieldRpm, d);
+  CHECK(readings.size() == 1);
+  REQUIRE(d.size() == 3);
+  CHECK(d[2].line == 6);
+  CHECK(d[2].column == 6);
+  CHECK(d[2].message.find("negative") != std::string::npos);
+
+  std::vector<Diagnostic> missing;
+  const auto axis = parse_numeric_csv("x.csv", "speed,power_w\n1,2\n", missing);
+  REQUIRE(axis);
+  CHECK(readings_from_csv(*axis, kFieldFeed, missing).empty());
+  REQUIRE_FALSE(missing.empty());
+  CHECK(missing[0].line == 1);
+  CHECK(missing[0].message.find("feed_mm_min") != std::string::npos);
+}
+
+TEST_CASE("CSV columns convert their units") {
+  std::vector<Diagnostic> d;
+  const auto csv = parse_numeric_csv("cut.csv", "feed_ipm;mrr_mm3_min;power_kw\n30;600;1.2\n", d);
+  REQUIRE(csv);
+  const auto r = readings_from_csv(*csv, kFieldFeed | kFieldMrr, d);
+  REQUIRE(r.size() == 1);
+  CHECK(d.empty());
+  CHECK(r[0].feed_mm_s == doctest::Approx(12.7));
+  CHECK(r[0].mrr_mm3_s == doctest::Approx(10));
+  CHECK(r[0].power_w == doctest::Approx(1200));
+}
+
+TEST_CASE("power logs: times must increase") {
+  std::vector<Diagnostic> d;
+  const auto csv =
+      parse_numeric_csv("log.csv", "time_s,power_w\n0,100\n0.1,110\n0.1,120\n0.2,90\n", d);
+  REQUIRE(csv);
+  const auto log = power_log_from_csv(*csv, d);
+  REQUIRE(log);
+  CHECK(log->t_s.size() == 3);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].line == 4);
+  CHECK(d[0].column == 1);
+}
+
+TEST_CASE("measured energy: trapezoid rule, idle power subtracted as Mora did") {
+  PowerLog log;
+  // 10 Hz: 2 s idle at 400 W, then a ramp to 1400 W over 1 s, then 3 s at 1400 W.
+  for (int i = 0; i <= 60; ++i) {
+    const double t = 0.1 * i;
+    log.t_s.push_back(t);
+    log.power_w.push_back(t <= 2 ? 400 : t <= 3 ? 400 + 1000 * (t - 2) : 1400);
+  }
+  const double exact = 2 * 400 + 1 * 900 + 3 * 1400;
+  const MeasuredEnergy gross = measure_energy(log);
+  CHECK(gross.energy_j == doctest::Approx(exact));
+  CHECK(gross.duration_s == doctest::Approx(6));
+  CHECK(gross.peak_power_w == doctest::Approx(1400));
+  CHECK(gross.net_energy_j == doctest::Approx(exact));
+  MeasureOptions first;
+  first.idle_from_first_s = 1.5;
+  const MeasuredEnergy net = measure_energy(log, first);
+  CHECK(net.idle_w == doctest::Approx(400));
+  CHECK(net.net_energy_j == doctest::Approx(exact - 400 * 6));
+  MeasureOptions fixed;
+  fixed.idle_w = 300;
+  CHECK(measure_energy(log, fixed).net_energy_j == doctest::Approx(exact - 300 * 6));
+}
+
+TEST_CASE("a profile written with fitted constants loads back through the profile loader") {
+  const std::string haas_path =
+      std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/haas-vf0-pavanaskar2014.toml";
+  std::ifstream in(haas_path);
+  REQUIRE(in);
+  std::stringstream base;
+  base << in.rdbuf();
+  const MachineProfile original = parse_profile(base.str(), haas_path);
+  PowerConstants k;
+  k.model = PowerModel::Combined;
+  for (std::size_t i = 0; i < kPowerParameterCount; ++i)
+    set_parameter(k, static_cast<PowerParameter>(i), 1.5 + 0.37 * static_cast<double>(i));
+  k.zhou.c3 = 8.06e-7;
+  k.co2_kg_per_kwh = 0.42;
+  k.price_per_kwh = 0.19;
+  k.currency = "USD";
+  std::string error;
+  const auto text = profile_with_power(base.str(), "fitted", k,
+                                       {{PowerParameter::SpindleKA, "fit of spindle.csv"}},
+                                       "ncjoule calibrate: spindle.csv", error);
+  REQUIRE(text);
+  CHECK(text->find("fit of spindle.csv") != std::string::npos);
+  const MachineProfile back = parse_profile(*text, "fitted.toml");
+  CHECK(back.name == "fitted");
+  CHECK(back.kinematics.tool_change_s == doctest::Approx(original.kinematics.tool_change_s));
+  CHECK(back.kinematics.axes[0].rapid_mm_s ==
+        doctest::Approx(original.kinematics.axes[0].rapid_mm_s));
+  CHECK(back.power.model == PowerModel::Combined);
+  CHECK(back.power.currency == "USD");
+  CHECK(back.power.co2_kg_per_kwh == doctest::Approx(0.42));
+  CHECK(back.power.price_per_kwh == doctest::Approx(0.19));
+  for (std::size_t i = 0; i < kPowerParameterCount; ++i) {
+    const auto p = static_cast<PowerParameter>(i);
+    CAPTURE(parameter_info(p).key);
+    CHECK(get_parameter(back.power, p) == doctest::Approx(get_parameter(k, p)).epsilon(1e-9));
+  }
+}

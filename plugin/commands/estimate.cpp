@@ -10,15 +10,19 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <spdlog/spdlog.h>
 #include <string>
 #include <vector>
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
+#include "ncjoule/energy.hpp"
 #include "ncjoule/kinematics.hpp"
 #include "ncjoule/profile.hpp"
+#include "ncjoule/removal.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -29,6 +33,11 @@ struct EstimateOptions {
   std::string file;
   std::string machine;
   std::string dialect;
+  std::string stock; // "box:..." or an STL file; empty: the box of the cutting moves
+  std::string engine = "dexel";
+  double grid_mm = 0;
+  bool no_removal = false;
+  std::optional<double> co2_kg_per_kwh, price_per_kwh;
   bool json = false;
 };
 
@@ -49,6 +58,12 @@ struct BlockSummary {
   double peak_speed_mm_s = 0;
   std::vector<std::string> notes;
   bool has_move = false;
+  // Removal and energy, over every time the line ran.
+  double removed_mm3 = 0;
+  double mrr_peak_mm3_s = 0;
+  double energy_j = 0;
+  double power_peak_w = 0;
+  ComponentValues components_j{};
 };
 
 std::string kind_name(CanonKind kind) {
@@ -140,12 +155,25 @@ bool has_code(std::string_view text, const Dialect& dialect) {
 }
 
 std::vector<BlockSummary> summarise_blocks(const SourceFile& source, const Dialect& dialect,
-                                           const Timeline& timeline) {
+                                           const Timeline& timeline, const RemovalResult* removal,
+                                           const EnergyResult& energy) {
   std::vector<BlockSummary> lines(source.lines.size());
   std::vector<int> best_rank(source.lines.size(), -1);
-  for (const TimedCommand& c : timeline.commands) {
+  for (std::size_t k = 0; k < timeline.commands.size(); ++k) {
+    const TimedCommand& c = timeline.commands[k];
     if (c.line < 0 || static_cast<std::size_t>(c.line) >= lines.size()) continue;
     BlockSummary& b = lines[c.line];
+    if (removal && k < removal->commands.size()) {
+      b.removed_mm3 += removal->commands[k].removed_mm3;
+      b.mrr_peak_mm3_s = std::max(b.mrr_peak_mm3_s, removal->commands[k].mrr_peak_mm3_s);
+    }
+    if (k < energy.commands.size()) {
+      const CommandEnergy& e = energy.commands[k];
+      b.energy_j += e.energy_j;
+      b.power_peak_w = std::max(b.power_peak_w, e.peak_power_w);
+      for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+        b.components_j[i] += e.components_j[i];
+    }
     const bool move = c.kind == CanonKind::Traverse || c.kind == CanonKind::Feed ||
                       c.kind == CanonKind::Arc || c.kind == CanonKind::Probe;
     if (b.commands++ == 0) b.start_s = c.start_s;
@@ -192,6 +220,13 @@ const char* severity_name(Severity s) {
   return "error";
 }
 
+Json components_json(const ComponentValues& values) {
+  Json j = Json::object();
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+    j[std::string(component_name(PowerComponent(i)))] = values[i];
+  return j;
+}
+
 Json block_json(const BlockSummary& b) {
   Json j;
   j["line"] = b.line + 1;
@@ -203,6 +238,13 @@ Json block_json(const BlockSummary& b) {
   j["exit_speed_mm_s"] = b.exit_speed_mm_s;
   j["peak_speed_mm_s"] = b.peak_speed_mm_s;
   j["commands"] = b.commands;
+  j["removed_mm3"] = b.removed_mm3;
+  j["mrr_mm3_s"] = b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0;
+  j["mrr_peak_mm3_s"] = b.mrr_peak_mm3_s;
+  j["power_w"] = b.time_s > 0 ? b.energy_j / b.time_s : 0.0;
+  j["power_peak_w"] = b.power_peak_w;
+  j["energy_j"] = b.energy_j;
+  j["components"] = components_json(b.components_j);
   if (!b.notes.empty()) j["notes"] = b.notes;
   return j;
 }
@@ -216,13 +258,24 @@ Json diagnostic_json(const Diagnostic& d) {
 }
 
 Json program_json(const SourceFile& source, const MachineProfile& machine, const Dialect& dialect,
-                  const Timeline& timeline, const std::vector<BlockSummary>& blocks,
+                  const Timeline& timeline, const RemovalResult* removal,
+                  const EnergyResult& energy, const std::vector<BlockSummary>& blocks,
                   const std::vector<Diagnostic>& diagnostics) {
   Json j;
   j["file"] = source.path;
-  j["machine"] = Json{{"name", machine.name}, {"file", machine.source_path}};
+  j["machine"] = Json{{"name", machine.name},
+                      {"file", machine.source_path},
+                      {"power_model", energy.model_description}};
   j["dialect"] = dialect.name;
   j["time_s"] = timeline.total_s;
+  j["removed_mm3"] = energy.removed_mm3;
+  j["stock"] = removal ? removal->stock_description : std::string("not simulated");
+  j["energy_j"] = energy.energy_j;
+  j["sec_j_mm3"] = energy.sec_j_mm3;
+  j["co2_kg"] = energy.co2_kg;
+  j["cost"] = energy.cost;
+  j["currency"] = energy.currency;
+  j["components"] = components_json(energy.components_j);
   Json list = Json::array();
   for (const BlockSummary& b : blocks)
     list.push_back(block_json(b));
@@ -283,7 +336,7 @@ TimeBreakdown break_down(const Timeline& timeline) {
 }
 
 void print_summary(const SourceFile& source, const MachineProfile& machine,
-                   const Timeline& timeline, std::size_t block_count) {
+                   const Timeline& timeline, const EnergyResult& energy, std::size_t block_count) {
   const TimeBreakdown b = break_down(timeline);
   std::printf("%s on %s\n", source.path.c_str(), machine.name.c_str());
   std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(timeline.total_s).c_str(),
@@ -292,6 +345,19 @@ void print_summary(const SourceFile& source, const MachineProfile& machine,
   std::printf("  feed moves  %s\n", clock_text(b.cutting_s).c_str());
   std::printf("  tool change %s (%d)\n", clock_text(b.tool_change_s).c_str(), b.tool_changes);
   std::printf("  other       %s (dwell, spindle ramps)\n", clock_text(b.other_s).c_str());
+  std::printf("  energy      %.4f kWh (%.1f kJ), mean power %.0f W, peak %.0f W\n",
+              energy.energy_j / 3.6e6, energy.energy_j / 1000, energy.mean_power_w,
+              energy.peak_power_w);
+  std::printf("  removed     %.0f mm^3, SEC %.2f J/mm^3\n", energy.removed_mm3, energy.sec_j_mm3);
+  std::printf("  CO2         %.4f kg, cost %.4f %s\n", energy.co2_kg, energy.cost,
+              energy.currency.c_str());
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
+    if (energy.components_j[i] == 0) continue;
+    std::printf("    %-12s %10.1f kJ (%.1f%%)\n",
+                std::string(component_name(PowerComponent(i))).c_str(),
+                energy.components_j[i] / 1000,
+                energy.energy_j > 0 ? 100 * energy.components_j[i] / energy.energy_j : 0.0);
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -320,27 +386,76 @@ int run_estimate(const EstimateOptions& o) {
   const auto t0 = Clock::now();
   Toolpath toolpath = interpret(*source, options);
   const auto t1 = Clock::now();
-  const Timeline timeline = plan(toolpath.commands, machine);
+  // Tools come from the program's header comments; removal needs every tool it uses.
+  std::vector<Diagnostic> diagnostics = toolpath.result.diagnostics;
+  std::map<int, Tool> tools = parse_tool_comments(*source, diagnostics);
+  std::optional<StockSpec> stock;
+  if (!o.no_removal) {
+    std::vector<Diagnostic> missing = check_tools_defined(toolpath.commands, tools, source->path);
+    if (!missing.empty()) {
+      print_diagnostics(diagnostics);
+      print_diagnostics(missing);
+      std::cerr << "ncjoule: define the tools in the program's header comments, or run with "
+                   "--no-removal to estimate without material removal\n";
+      return kInputError;
+    }
+    if (!o.stock.empty()) {
+      std::string error;
+      stock = parse_stock_spec(o.stock, &error);
+      if (!stock) {
+        std::cerr << "ncjoule: bad --stock '" << o.stock << "': " << error << '\n';
+        return kUsage;
+      }
+    } else {
+      stock = StockSpec{}; // the box of the cutting moves
+    }
+  }
+  RemovalOptions removal_options;
+  removal_options.engine = o.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
+  removal_options.grid_mm = o.grid_mm;
+  removal_options.source_path = source->path;
+  PlanOptions plan_options;
+  if (stock && !tools.empty()) {
+    const double grid =
+        removal_options.grid_mm > 0 ? removal_options.grid_mm : default_grid_spacing(tools);
+    plan_options.max_sample_step_mm = recommended_sample_step(tools, grid);
+  }
+  const Timeline timeline = plan(toolpath.commands, machine, plan_options);
   const auto t2 = Clock::now();
+  std::optional<RemovalResult> removal;
+  if (stock) {
+    try {
+      removal = simulate_removal(toolpath.commands, timeline, tools, *stock, removal_options);
+    } catch (const std::exception& e) {
+      std::cerr << "ncjoule: material removal failed: " << e.what() << '\n';
+      return kInputError;
+    }
+    diagnostics.insert(diagnostics.end(), removal->diagnostics.begin(), removal->diagnostics.end());
+  }
+  EnergyOptions energy_options;
+  energy_options.co2_kg_per_kwh = o.co2_kg_per_kwh;
+  energy_options.price_per_kwh = o.price_per_kwh;
+  const EnergyResult energy = estimate_energy(
+      toolpath.commands, timeline, removal ? &*removal : nullptr, machine.power, energy_options);
+  diagnostics.insert(diagnostics.end(), energy.diagnostics.begin(), energy.diagnostics.end());
   spdlog::info("interpret: {} blocks, {} commands in {:.3f} s", toolpath.result.blocks,
                toolpath.commands.size(), std::chrono::duration<double>(t1 - t0).count());
   spdlog::info("plan: {} commands in {:.3f} s", toolpath.commands.size(),
                std::chrono::duration<double>(t2 - t1).count());
 
-  std::vector<Diagnostic> diagnostics = toolpath.result.diagnostics;
   for (Diagnostic d : timeline.diagnostics) {
     d.file = source->path;
     diagnostics.push_back(std::move(d));
   }
-  const std::vector<BlockSummary> blocks =
-      summarise_blocks(*source, toolpath.result.dialect, timeline);
+  const std::vector<BlockSummary> blocks = summarise_blocks(
+      *source, toolpath.result.dialect, timeline, removal ? &*removal : nullptr, energy);
   if (o.json) {
-    std::cout << program_json(*source, machine, toolpath.result.dialect, timeline, blocks,
-                              diagnostics)
+    std::cout << program_json(*source, machine, toolpath.result.dialect, timeline,
+                              removal ? &*removal : nullptr, energy, blocks, diagnostics)
                      .dump(1)
               << '\n';
   } else {
-    print_summary(*source, machine, timeline, blocks.size());
+    print_summary(*source, machine, timeline, energy, blocks.size());
   }
   std::cout.flush();
   std::fflush(stdout);
@@ -359,6 +474,18 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_option("--dialect", options->dialect,
                   "Controller dialect (linuxcnc, fanuc, haas, grbl, mach3, siemens); "
                   "default: the machine profile's, else detected from the file");
+  cmd->add_option("--stock", options->stock,
+                  "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; "
+                  "default: the bounding box of the cutting moves");
+  cmd->add_option("--engine", options->engine, "Removal engine: dexel (default) or voxel")
+      ->check(CLI::IsMember({"dexel", "voxel"}));
+  cmd->add_option("--grid", options->grid_mm,
+                  "Removal grid spacing in mm (default: from the tools)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-removal", options->no_removal,
+                "Do not simulate material removal (no tools needed; cutting power is zero)");
+  cmd->add_option("--co2", options->co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
+  cmd->add_option("--price", options->price_per_kwh, "Price per kWh (overrides the profile)");
   cmd->add_flag("--json", options->json, "Print the per-block results as JSON (docs/json.md)");
   cmd->callback([options, &exit_code] { exit_code = run_estimate(*options); });
 });

@@ -5,5 +5,6 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh
 sample=samples/programs/bracket-linuxcnc.ngc
-echo "== ncjoule canon $sample (first 20 commands)"
-build/plugin/ncjoule canon "$sample" | head -n 20
+machine=samples/machines/zhou2017-anziani2025.toml
+echo "== ncjoule estimate $sample --machine $machine --stock box:0,0,-20,100,60,0"
+build/plugin/ncjoule estimate "$sample" --machine "$machine" --stock box:0,0,-20,100,60,0

@@ -1,0 +1,79 @@
+#!/usr/bin/env python3
+"""`ncjoule estimate` end to end: the JSON names docs/json.md promises, totals that add up, and
+clear failures (undefined tool, bad profile, unreadable file) with exit code 2."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+NCJOULE = os.environ["NCJOULE"]
+ROOT = os.environ["NCJOULE_SOURCE_DIR"]
+SAMPLE = os.path.join(ROOT, "samples/programs/bracket-linuxcnc.ngc")
+ZHOU = os.path.join(ROOT, "samples/machines/zhou2017-anziani2025.toml")
+STOCK = "box:0,0,-20,100,60,0"
+failures = []
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def run(*args, stdin=None):
+    return subprocess.run([NCJOULE, *args], capture_output=True, text=True, input=stdin)
+
+
+r = run("estimate", SAMPLE, "--machine", ZHOU, "--stock", STOCK, "--json")
+check(r.returncode == 0, f"estimate --json exits 0 (got {r.returncode}: {r.stderr[:200]})")
+doc = json.loads(r.stdout)
+blocks = doc["blocks"]
+for key in ["time_s", "energy_j", "removed_mm3", "sec_j_mm3", "co2_kg", "cost", "components",
+            "warnings", "machine"]:
+    check(key in doc, f"program has '{key}'")
+for key in ["line", "kind", "time_s", "entry_speed_mm_s", "exit_speed_mm_s", "removed_mm3",
+            "mrr_mm3_s", "mrr_peak_mm3_s", "power_w", "power_peak_w", "energy_j", "components"]:
+    check(all(key in b for b in blocks), f"every block has '{key}'")
+check(abs(sum(b["time_s"] for b in blocks) - doc["time_s"]) < 1e-6 * doc["time_s"],
+      "block times add up to the program time")
+check(abs(sum(b["energy_j"] for b in blocks) - doc["energy_j"]) < 1e-6 * doc["energy_j"],
+      "block energies add up to the program energy")
+check(abs(sum(doc["components"].values()) - doc["energy_j"]) < 1e-6 * doc["energy_j"],
+      "components add up to the program energy")
+check(abs(sum(b["removed_mm3"] for b in blocks) - doc["removed_mm3"]) < 1e-6 * doc["removed_mm3"],
+      "block volumes add up to the removed volume")
+check(abs(doc["sec_j_mm3"] - doc["energy_j"] / doc["removed_mm3"]) < 1e-9 * doc["sec_j_mm3"],
+      "SEC is energy over removed volume")
+# The 100 x 60 facing pass at 1 mm depth removes 6000 mm^3 of the box's top.
+facing = [b for b in blocks if 13 <= b["line"] <= 26 and b["kind"] == "feed"]
+check(abs(sum(b["removed_mm3"] for b in facing) - 6000) < 0.002 * 6000,
+      f"facing removes 6000 mm^3 within 0.2% (got {sum(b['removed_mm3'] for b in facing):.1f})")
+rapids = [b for b in blocks if b["kind"] == "rapid"]
+check(all(b["removed_mm3"] == 0 for b in rapids), "rapids remove nothing")
+check(all(b["components"]["cutting"] == 0 for b in blocks if b["removed_mm3"] == 0),
+      "no cutting energy where nothing is removed")
+
+# A tool that is used but defined nowhere is an error naming the tool.
+with tempfile.TemporaryDirectory() as tmp:
+    bare = os.path.join(tmp, "bare.ngc")
+    with open(bare, "w") as f:
+        f.write("G21 G90\nT7 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X50\nM30\n")
+    r = run("estimate", bare, "--machine", ZHOU)
+    check(r.returncode == 2 and "7" in r.stderr, f"undefined tool T7: exit 2, named ({r.stderr[:160]!r})")
+    r = run("estimate", bare, "--machine", ZHOU, "--no-removal", "--json")
+    check(r.returncode == 0 and json.loads(r.stdout)["removed_mm3"] == 0,
+          "--no-removal estimates without tools")
+    bad = os.path.join(tmp, "bad.toml")
+    with open(ZHOU) as f:
+        text = f.read()
+    with open(bad, "w") as f:
+        f.write(text.replace("accel_mm_s2 = 1000", "accel_mm_s2 = -1", 1))
+    r = run("estimate", bare, "--machine", bad, "--no-removal")
+    check(r.returncode == 2 and "accel" in r.stderr and "bad.toml" in r.stderr,
+          f"negative acceleration refused with file and key ({r.stderr.strip()[:160]!r})")
+    r = run("estimate", os.path.join(tmp, "missing.ngc"), "--machine", ZHOU)
+    check(r.returncode == 2 and "missing.ngc" in r.stderr, "unreadable input: exit 2, named")
+
+print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
+sys.exit(1 if failures else 0)

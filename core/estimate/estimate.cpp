@@ -1,0 +1,88 @@
+// The pipeline: interpret, plan, remove material, integrate power, summarise per line.
+#include <chrono>
+#include <exception>
+#include <spdlog/spdlog.h>
+
+#include "line_summary.hpp"
+
+namespace ncjoule {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+} // namespace
+
+Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
+                          const EstimateOptions& options) {
+  Estimate e;
+  e.file = source.path;
+  InterpreterOptions interpreter;
+  interpreter.dialect = options.dialect;
+  if (!interpreter.dialect) interpreter.dialect = find_dialect(machine.dialect);
+  interpreter.tools = options.tool_table;
+
+  // Stage times go to the log (-v): the benchmarks read them.
+  auto t = Clock::now();
+  e.toolpath = interpret(source, interpreter);
+  e.dialect = e.toolpath.result.dialect;
+  e.diagnostics = e.toolpath.result.diagnostics;
+  spdlog::info("interpret: {} blocks, {} commands in {:.3f} s", e.toolpath.result.blocks,
+               e.toolpath.commands.size(), seconds_since(t));
+
+  // Tools come from the program's header comments; removal needs every tool it uses.
+  e.tools = parse_tool_comments(source, e.diagnostics);
+  std::optional<StockSpec> stock;
+  if (options.simulate_removal) {
+    std::vector<Diagnostic> missing =
+        check_tools_defined(e.toolpath.commands, e.tools, source.path);
+    if (!missing.empty()) {
+      e.diagnostics.insert(e.diagnostics.end(), missing.begin(), missing.end());
+      e.failed = true;
+      return e;
+    }
+    stock = options.stock ? *options.stock : StockSpec{};
+  }
+  PlanOptions plan_options;
+  if (stock && !e.tools.empty()) {
+    const double grid =
+        options.removal.grid_mm > 0 ? options.removal.grid_mm : default_grid_spacing(e.tools);
+    plan_options.max_sample_step_mm = recommended_sample_step(e.tools, grid);
+  }
+  t = Clock::now();
+  e.timeline = plan(e.toolpath.commands, machine, plan_options);
+  spdlog::info("plan: {} commands in {:.3f} s", e.toolpath.commands.size(), seconds_since(t));
+  for (Diagnostic d : e.timeline.diagnostics) {
+    d.file = source.path;
+    e.diagnostics.push_back(std::move(d));
+  }
+
+  if (stock) {
+    RemovalOptions removal_options = options.removal;
+    removal_options.source_path = source.path;
+    t = Clock::now();
+    try {
+      e.removal =
+          simulate_removal(e.toolpath.commands, e.timeline, e.tools, *stock, removal_options);
+    } catch (const std::exception& ex) {
+      e.diagnostics.push_back({Severity::Error, source.path, 0, 0,
+                               std::string("material removal failed: ") + ex.what()});
+      e.failed = true;
+      return e;
+    }
+    spdlog::info("removal: {:.1f} mm^3 in {:.3f} s", e.removal->removed_mm3, seconds_since(t));
+    e.diagnostics.insert(e.diagnostics.end(), e.removal->diagnostics.begin(),
+                         e.removal->diagnostics.end());
+  }
+  e.energy = estimate_energy(e.toolpath.commands, e.timeline, e.removal ? &*e.removal : nullptr,
+                             machine.power, options.energy);
+  e.diagnostics.insert(e.diagnostics.end(), e.energy.diagnostics.begin(),
+                       e.energy.diagnostics.end());
+  e.lines =
+      summarise_lines(source, e.dialect, e.timeline, e.removal ? &*e.removal : nullptr, e.energy);
+  return e;
+}
+
+} // namespace ncjoule

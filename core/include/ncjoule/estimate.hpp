@@ -1,0 +1,69 @@
+// ncjoule: the whole pipeline behind one call. Interprets a program, plans it on a machine,
+// simulates material removal and integrates power, and folds the results into one summary per
+// source line: what the command line, the annotator, the reports and the C API all show.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ncjoule/energy.hpp"
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/kinematics.hpp"
+#include "ncjoule/machine.hpp"
+#include "ncjoule/removal.hpp"
+
+namespace ncjoule {
+
+struct EstimateOptions {
+  std::optional<Dialect> dialect; // empty: the machine's dialect, else detected from the file
+  std::optional<StockSpec> stock; // empty: the bounding box of the cutting moves
+  bool simulate_removal = true;   // false: no tools needed, cutting power is zero
+  RemovalOptions removal;
+  EnergyOptions energy;
+  ToolTable tool_table; // tool lengths for G43 (optional)
+};
+
+// Everything the results say about one source line, over every time it ran.
+struct LineSummary {
+  int line = 0;                 // 0-based
+  std::string kind = "setting"; // what the line does, by its most telling command (kind_name)
+  int commands = 0;             // canonical commands the line produced, over all its runs
+  double start_s = 0;           // when it first ran
+  double time_s = 0;            // over all its runs
+  double length_mm = 0;
+  double entry_speed_mm_s = 0; // at its first move
+  double exit_speed_mm_s = 0;  // at its last move
+  double peak_speed_mm_s = 0;
+  std::vector<std::string> notes;
+  bool has_move = false;
+  double removed_mm3 = 0;
+  double mrr_peak_mm3_s = 0;
+  double energy_j = 0;
+  double power_peak_w = 0;
+  ComponentValues components_j{};
+};
+
+struct Estimate {
+  std::string file;
+  Dialect dialect;
+  Toolpath toolpath;
+  Timeline timeline;
+  std::map<int, Tool> tools;
+  std::optional<RemovalResult> removal; // empty when removal was not simulated
+  EnergyResult energy;
+  std::vector<LineSummary> lines;      // one per source line that holds code, in file order
+  std::vector<Diagnostic> diagnostics; // interpreter, planner, removal and energy, in order
+  bool failed = false;                 // an error made the numbers meaningless (see diagnostics)
+};
+
+// Runs the pipeline. Never throws for bad input: problems are diagnostics, and `failed` is set
+// when the program cannot be estimated (e.g. a tool used but defined nowhere).
+Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
+                          const EstimateOptions& options = {});
+
+// "rapid", "feed", "arc", "probe", "dwell", "tool_change", "spindle", "coolant", ...
+std::string kind_name(CanonKind kind);
+
+} // namespace ncjoule

@@ -1,7 +1,8 @@
 // Canned drilling cycles (G73, G81, G82, G83, G85, G86, G89), expanded into the moves the
 // machine makes, in the order LinuxCNC's interpreter makes them: rise to the R plane if below
 // it, rapid over the hole, rapid down to R, the cycle's own moves, then retract to the clear
-// height (the R plane under G99; the higher of R and the starting height under G98).
+// height (the R plane under G99; under G98 the higher of R and the height the series of cycles
+// began at).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -50,7 +51,13 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
     return;
   }
   if (state_.feed <= 0) error(col, "canned cycle with no feed rate (F word missing)");
-  const double old_c = pos_.*ax.c;
+  if (!have_cycle_initial_height_) {
+    cycle_initial_height_ = pos_.*ax.c;
+    have_cycle_initial_height_ = true;
+  }
+  // Under G98 the holes of a series are approached at, and retracted to, the series' initial
+  // level; under G99 from wherever the last cycle left the tool (rs274 does the same).
+  const double old_c = retract_to_r_ ? pos_.*ax.c : cycle_initial_height_;
   double r = cycle_r_ * u;
   double bottom = cycle_z_ * u;
   if (incremental_) {
@@ -167,7 +174,8 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       emit_simple(CanonKind::Dwell, dwell);
       feed(a, b, clear);
       break;
-    default: break;
+    default:
+      break;
     }
     height = clear;
   }

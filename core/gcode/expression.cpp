@@ -11,7 +11,7 @@ namespace ncjoule::detail {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
-constexpr double kEqualTolerance = 1e-6;
+constexpr double kEqualTolerance = 1e-4; // rs274ngc's TOLERANCE_EQUAL
 
 class Evaluator {
 public:
@@ -81,7 +81,7 @@ private:
       return fail("parameter number is not an integer");
     }
     std::string err;
-    if (!params_.read(int(r), v, err)) {
+    if (!params_.read(saturate<int>(r), v, err)) {
       pos_ = start;
       return fail(err);
     }
@@ -141,7 +141,7 @@ private:
       else if (name == "ln") {
         if (a <= 0) return pos_ = start, fail("LN of zero or a negative number");
         v = std::log(a);
-      } else if (name == "round") v = double(long(a + (a < 0 ? -0.5 : 0.5)));
+      } else if (name == "round") v = std::round(a); // halves away from zero, as LinuxCNC
       else if (name == "sin") v = std::sin(a * kDegree);
       else if (name == "sqrt") {
         if (a < 0) return pos_ = start, fail("SQRT of a negative number");

@@ -1,6 +1,7 @@
 // Internal: evaluation of G-code values and [ ] expressions (LinuxCNC and Fanuc macro syntax).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <string_view>
 
@@ -20,6 +21,15 @@ public:
 // Returns false with a message on error; `offset` is then the position of the problem.
 bool evaluate(std::string_view text, ParameterReader& params, double& value, std::string& error,
               std::size_t& offset);
+
+// Converts a program value to an integer type, saturating at the type's range (NaN gives 0):
+// casting an out-of-range double is undefined behaviour, and a program may well say G1e300.
+template <class Int> Int saturate(double value) {
+  if (!(value == value)) return 0;
+  if (value <= double(std::numeric_limits<Int>::min())) return std::numeric_limits<Int>::min();
+  if (value >= double(std::numeric_limits<Int>::max())) return std::numeric_limits<Int>::max();
+  return Int(value);
+}
 
 // Fast path for plain numbers ("12", "-.5", "+3."); false when text is not one.
 bool parse_plain_number(std::string_view text, double& value);

@@ -453,7 +453,7 @@ void Interpreter::handle_o_word(const Block& b) {
     auto& counters = frames_.empty() ? top_repeat_counters_ : frames_.back().repeat_counters;
     double v;
     if (!eval_condition(b.o_args, col, v)) return;
-    long count = long(std::floor(v + 1e-9));
+    long count = saturate<long>(std::floor(v + 1e-9));
     auto end = find_next(label, pc_, {"endrepeat"});
     if (!end) {
       error(col, "o" + label + " repeat has no matching endrepeat");
@@ -516,9 +516,9 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
     if (w.letter == 'g' || w.letter == 'm') {
       const double scaled = value * 10.0;
       const double r = std::round(scaled);
-      if (std::abs(scaled - r) > 1e-6 || value < 0) {
-        error(w.column, std::string(1, up) + " code must be a non-negative number with at most "
-                                             "one decimal");
+      if (std::abs(scaled - r) > 1e-6 || value < 0 || value > 100000) {
+        error(w.column, std::string(1, up) + " code must be a number from 0 to 100000 with at "
+                                             "most one decimal");
         ok = false;
         continue;
       }
@@ -545,18 +545,26 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
     v.letter[slot(w.letter)] = value;
     v.column[slot(w.letter)] = w.column;
   }
-  // Parameter assignments take effect after every word of the line has been read.
+  // Parameter assignments take effect after every word of the line has been read, and all of
+  // them read the values from before the line: "#1=5 #2=[#1+1]" sets #2 from the old #1.
+  struct Pending {
+    std::string_view name; // named parameter, or empty
+    int index = 0;
+    double value = 0;
+    int column = 0;
+  };
+  std::vector<Pending> pending;
   for (const Assignment& a : b.assignments) {
-    double value;
+    Pending w{{}, 0, 0, a.column};
     std::string err;
     std::size_t off = 0;
-    if (!evaluate(a.value, params_, value, err, off)) {
+    if (!evaluate(a.value, params_, w.value, err, off)) {
       error(a.column, err);
       ok = false;
       continue;
     }
     if (!a.target.empty() && a.target.front() == '<') {
-      params_.write(a.target.substr(1, a.target.size() - 2), value);
+      w.name = a.target.substr(1, a.target.size() - 2);
     } else {
       double index;
       if (!evaluate(a.target, params_, index, err, off)) {
@@ -564,8 +572,14 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
         ok = false;
         continue;
       }
-      if (!params_.write(int(std::lround(index)), value, err)) error(a.column, err), ok = false;
+      w.index = saturate<int>(std::round(index));
     }
+    pending.push_back(w);
+  }
+  for (const Pending& w : pending) {
+    std::string err;
+    if (!w.name.empty()) params_.write(w.name, w.value);
+    else if (!params_.write(w.index, w.value, err)) error(w.column, err), ok = false;
   }
   return ok;
 }
@@ -587,7 +601,16 @@ bool Interpreter::check_modal_groups(const BlockValues& v) {
 }
 
 void Interpreter::execute(const Block& b, BlockValues& v) {
-  check_modal_groups(v);
+  if (dialect_.g65_macro_calls && has_g(v, 650)) {
+    macro_call(v);
+    return;
+  }
+  // Which of two codes of one group the programmer meant cannot be known: the block is skipped
+  // whole, as rs274 refuses it, and the program goes on.
+  if (!check_modal_groups(v)) {
+    note(0, "block skipped");
+    return;
+  }
   // 1. Comments and messages.
   for (const Comment& c : b.comments) {
     std::string lowered(c.text.substr(0, 4));
@@ -847,12 +870,10 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   // 20. Motion.
   for (int code : v.g) {
     if (g_group(code) != 1) continue;
+    // A series of cycles ends with any motion code that is not a cycle (G80 included); one
+    // cycle code after another (G81 then G82) goes on with the same series.
     const bool cycle = code == 730 || (code >= 810 && code <= 890);
-    if (cycle && Motion(code) != motion_) {
-      cycle_initial_height_ = state_.plane == Plane::XY   ? pos_.z
-                              : state_.plane == Plane::XZ ? pos_.y
-                                                          : pos_.x;
-    }
+    if (!cycle) have_cycle_initial_height_ = false;
     motion_ = Motion(code);
   }
   const bool g53 = has_g(v, 530);
@@ -976,28 +997,30 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
       }
     }
   }
-  // G65 macro call: arguments by letter (A=#1, B=#2, C=#3, I=#4, J=#5, K=#6, D=#7, ...).
-  if (has_g(v, 650)) {
-    if (!v.has('p')) {
-      error(v.g_column(650), "G65 needs a P word (macro program number)");
-    } else {
-      auto it = program_numbers_.find(std::lround(*v['p']));
-      if (it == program_numbers_.end()) {
-        error(v.column['p' - 'a'], "macro program O" + std::to_string(std::lround(*v['p'])) +
-                                       " is not in this file: call skipped");
-      } else {
-        static constexpr std::pair<char, int> map[] = {
-            {'a', 1},  {'b', 2},  {'c', 3},  {'i', 4},  {'j', 5},  {'k', 6},  {'d', 7},
-            {'e', 8},  {'f', 9},  {'h', 11}, {'m', 13}, {'q', 17}, {'r', 18}, {'s', 19},
-            {'t', 20}, {'u', 21}, {'v', 22}, {'w', 23}, {'x', 24}, {'y', 25}, {'z', 26}};
-        std::vector<double> args(26, 0.0);
-        for (auto [letter, index] : map)
-          if (v.has(letter)) args[index - 1] = *v[letter];
-        const int repeats = v.has('l') ? int(std::lround(*v['l'])) : 1;
-        call_subroutine(it->second, std::move(args), true, repeats);
-      }
-    }
+}
+
+void Interpreter::macro_call(const BlockValues& v) {
+  // G65 P<program> L<repeats>: every other letter is an argument (A=#1, B=#2, C=#3, I=#4, J=#5,
+  // K=#6, D=#7, ...), not an axis, feed or speed.
+  if (!v.has('p')) {
+    error(v.g_column(650), "G65 needs a P word (macro program number)");
+    return;
   }
+  auto it = program_numbers_.find(std::lround(*v['p']));
+  if (it == program_numbers_.end()) {
+    error(v.column['p' - 'a'], "macro program O" + std::to_string(std::lround(*v['p'])) +
+                                   " is not in this file: call skipped");
+    return;
+  }
+  static constexpr std::pair<char, int> map[] = {
+      {'a', 1},  {'b', 2},  {'c', 3},  {'i', 4},  {'j', 5},  {'k', 6},  {'d', 7},
+      {'e', 8},  {'f', 9},  {'h', 11}, {'m', 13}, {'q', 17}, {'r', 18}, {'s', 19},
+      {'t', 20}, {'u', 21}, {'v', 22}, {'w', 23}, {'x', 24}, {'y', 25}, {'z', 26}};
+  std::vector<double> args(26, 0.0);
+  for (auto [letter, index] : map)
+    if (v.has(letter)) args[index - 1] = *v[letter];
+  const int repeats = v.has('l') ? int(std::lround(*v['l'])) : 1;
+  call_subroutine(it->second, std::move(args), true, repeats);
 }
 
 // ------------------------------------------------------------------------------------------

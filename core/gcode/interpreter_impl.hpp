@@ -67,6 +67,7 @@ private:
                                        std::initializer_list<const char*> keywords) const;
   bool eval_condition(std::string_view args, int column, double& value);
   void call_subroutine(std::size_t target_line, std::vector<double> args, bool fanuc, int repeats);
+  void macro_call(const BlockValues& v); // G65
   void return_from_subroutine(std::optional<double> value);
 
   // --- one block ----------------------------------------------------------------------------
@@ -142,9 +143,11 @@ private:
   // Sticky canned-cycle values (program units).
   double cycle_r_ = 0, cycle_z_ = 0, cycle_q_ = 0, cycle_p_ = 0;
   bool have_cycle_r_ = false, have_cycle_z_ = false;
-  // Height of the drilling axis when the current series of cycles began: under G91, R is
-  // measured from it (rs274ngc keeps it across the blocks of one series).
+  // Height of the drilling axis when the current series of cycles began (rs274ngc's "initial
+  // level", kept across the blocks of one series): G98 retracts to it, every hole of the series
+  // is approached at it, and under G91 R is measured from it.
   double cycle_initial_height_ = 0;
+  bool have_cycle_initial_height_ = false;
   int current_line_ = 0;
   int current_call_line_ = 0;
   std::size_t command_count_ = 0;

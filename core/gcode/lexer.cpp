@@ -9,6 +9,9 @@ namespace {
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 bool is_letter(char c) { return c >= 'a' && c <= 'z'; }
+// ASCII only, like std::tolower in the "C" locale, without its per-character library call: this
+// runs on every byte of the program.
+char to_lower(char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; }
 
 // Unary functions that may stand where a value is expected (LinuxCNC), e.g. "x abs[#1]".
 constexpr const char* kFunctions[] = {"abs", "acos", "asin", "atan", "cos",   "exp", "fix",
@@ -135,7 +138,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       b.comments.push_back({line.substr(i + 1), int(i) + 1});
       break;
     } else {
-      b.code.push_back(char(std::tolower(static_cast<unsigned char>(c))));
+      b.code.push_back(to_lower(c));
       b.columns.push_back(int(i) + 1);
       ++i;
     }

@@ -101,7 +101,8 @@ void Interpreter::spline(const BlockValues& v, bool quadratic) {
   // The second difference bounds the chord error: n segments give error <= M / (8 n^2).
   const double m = std::max(std::hypot(cx[0] - 2 * cx[1] + cx[2], cy[0] - 2 * cy[1] + cy[2]),
                             std::hypot(cx[1] - 2 * cx[2] + cx[3], cy[1] - 2 * cy[2] + cy[3]));
-  const int n = std::clamp(int(std::ceil(std::sqrt(6 * m / (8 * 0.01)))), 1, 10000);
+  const double wanted = std::ceil(std::sqrt(6 * m / (8 * 0.01)));
+  const int n = wanted >= 1 ? int(std::min(wanted, 10000.0)) : 1; // NaN (huge input) gives 1
   for (int k = 1; k <= n; ++k) {
     const double t = double(k) / n, s = 1 - t;
     Pose p = pos_;

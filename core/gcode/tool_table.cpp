@@ -31,7 +31,7 @@ ToolTable parse_tool_table(const SourceFile& file, bool inch,
                                std::string("expected a number after '") + c + "'"});
         break;
       }
-      if (c == 'T') entry.number = int(value), have_t = true;
+      if (c == 'T') entry.number = detail::saturate<int>(value), have_t = true;
       else if (c == 'Z') entry.z_offset = value * scale;
       else if (c == 'D') entry.diameter = value * scale;
       p = q;

@@ -1,0 +1,125 @@
+// Arcs and helices: R form both ways round, full circles, every plane, P turns, and the radius
+// check. Expected lines are what `rs274 -g` prints for the same programs.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "program_runner.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+TEST_CASE("R-form arcs: positive R takes the short way, negative R the long way") {
+  const Toolpath p = run("G21 G17\nG0 X0 Y0 Z0\nG2 X10 Y0 R5 F100\nG3 X0 Y0 R-5\nG2 X10 Y0 R-6\n"
+                         "G2 X0 Y0 R6\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto m = move_commands(p);
+  REQUIRE(m.size() == 5);
+  // rs274 prints the centre's Y as -0.0000 too.
+  CHECK(format_canon(m[1]) ==
+        "ARC_FEED(10.0000, 0.0000, 5.0000, -0.0000, -1, 0.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(format_canon(m[2]) ==
+        "ARC_FEED(0.0000, 0.0000, 5.0000, 0.0000, 1, 0.0000, 0.0000, 0.0000, 0.0000)");
+  // R6 over a 10 mm chord: centre 3.3166 off the chord's middle, on the side that makes the
+  // arc longer than a half circle for R-6 and shorter for R6.
+  CHECK(format_canon(m[3]) ==
+        "ARC_FEED(10.0000, 0.0000, 5.0000, 3.3166, -1, 0.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(format_canon(m[4]) ==
+        "ARC_FEED(0.0000, 0.0000, 5.0000, 3.3166, -1, 0.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(std::abs(arc_geometry(m[3]).sweep) > std::numbers::pi);
+  CHECK(std::abs(arc_geometry(m[4]).sweep) < std::numbers::pi);
+  CHECK(arc_geometry(m[4]).radius == doctest::Approx(6.0));
+}
+
+TEST_CASE("R-form arc too small to reach its end point is an error") {
+  const Toolpath p = run("G21 G0 X0 Y0\nG2 X10 Y0 R4 F100\nM2\n");
+  const auto e = with_severity(p, Severity::Error);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].column == 11); // the R word
+  CHECK(of_kind(p, CanonKind::Arc).empty());
+}
+
+TEST_CASE("full circles with IJK, and P extra turns with a helix") {
+  const Toolpath p = run("G21\nG0 X0 Y0 Z0\nG2 X0 Y0 I5 J0 F100\nG3 I-5 Z-2 P3\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto arcs = of_kind(p, CanonKind::Arc);
+  REQUIRE(arcs.size() == 2);
+  CHECK(format_canon(arcs[0]) ==
+        "ARC_FEED(0.0000, 0.0000, 5.0000, 0.0000, -1, 0.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(format_canon(arcs[1]) ==
+        "ARC_FEED(0.0000, 0.0000, -5.0000, 0.0000, 3, -2.0000, 0.0000, 0.0000, 0.0000)");
+  const ArcGeometry full = arc_geometry(arcs[0]);
+  CHECK(full.sweep == doctest::Approx(-2 * std::numbers::pi));
+  CHECK(full.length == doctest::Approx(10 * std::numbers::pi));
+  const ArcGeometry helix = arc_geometry(arcs[1]);
+  CHECK(helix.sweep == doctest::Approx(6 * std::numbers::pi));
+  CHECK(helix.axial == doctest::Approx(-2.0));
+  CHECK(helix.length == doctest::Approx(std::hypot(30 * std::numbers::pi, 2.0)));
+}
+
+TEST_CASE("helices in every plane: G18 (ZX), G19 (YZ), G17 (XY)") {
+  const Toolpath p = run("G21\nG0 X0 Y0 Z0\nG18 G2 X10 Z0 Y-3 I5 K0 F100\n"
+                         "G19 G3 Y7 Z0 X2 J5 K0 P2\nG17 G3 X0 Y7 Z-1 I-1 J0\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto arcs = of_kind(p, CanonKind::Arc);
+  REQUIRE(arcs.size() == 3);
+  // rs274 prints the plane's first and second axis: Z X for G18, Y Z for G19.
+  CHECK(arcs[0].plane == Plane::XZ);
+  CHECK(format_canon(arcs[0]) ==
+        "ARC_FEED(0.0000, 10.0000, 0.0000, 5.0000, -1, -3.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(arc_geometry(arcs[0]).axial == doctest::Approx(-3.0));
+  CHECK(arcs[1].plane == Plane::YZ);
+  CHECK(format_canon(arcs[1]) ==
+        "ARC_FEED(7.0000, 0.0000, 2.0000, 0.0000, 2, 2.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(arc_geometry(arcs[1]).sweep == doctest::Approx(3 * std::numbers::pi));
+  CHECK(arcs[2].plane == Plane::XY);
+  CHECK(format_canon(arcs[2]) ==
+        "ARC_FEED(0.0000, 7.0000, 1.0000, 7.0000, 1, -1.0000, 0.0000, 0.0000, 0.0000)");
+  // The helix ends where it should: point_on_move at 1 is the end point.
+  const Pose end = point_on_move(arcs[1], 1.0);
+  CHECK(end.x == doctest::Approx(2.0));
+  CHECK(end.y == doctest::Approx(7.0));
+  CHECK(end.z == doctest::Approx(0.0));
+  const Pose half = point_on_move(arcs[1], 0.5);
+  CHECK(half.x == doctest::Approx(6.0)); // halfway along the helix axis, from X10 to X2
+}
+
+TEST_CASE("radius to the end differing from the radius to the start is an error") {
+  const Toolpath p = run("G21 G0 X0 Y0 Z0\nG2 X10 Y0 I4 J0 F100\nM2\n");
+  const auto e = with_severity(p, Severity::Error);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].message.find("r1=4.0000 r2=6.0000") != std::string::npos);
+  // Within LinuxCNC's tolerance (0.001 relative) the arc is accepted.
+  CHECK(errors(run("G21 G0 X0 Y0 Z0\nG2 X10.004 Y0 I5 J0 F100\nM2\n")) == 0);
+}
+
+TEST_CASE("arc P must be a positive integer, an arc needs offsets or R") {
+  const Toolpath p = run("G21 G0 X0 Y0\nG2 X0 Y0 I5 P0 F100\nG2 X0 Y0 I5 P1.5\nG2 X1 Y1\nM2\n");
+  CHECK(errors(p) == 3);
+  CHECK(of_kind(p, CanonKind::Arc).empty());
+}
+
+TEST_CASE("arcs in inch programs: mm inside, inches when printed") {
+  const Toolpath p = run("G20\nG0 X1 Y1 Z0.1\nG2 X3 Y1 I1 J0 F10\nG91 G3 X-1 Y1 R1\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto arcs = of_kind(p, CanonKind::Arc);
+  REQUIRE(arcs.size() == 2);
+  CHECK(arcs[0].centre_first == doctest::Approx(50.8));
+  CHECK(arcs[0].end.x == doctest::Approx(76.2));
+  CHECK(arc_geometry(arcs[0]).radius == doctest::Approx(25.4));
+  CHECK(format_canon(arcs[0]) ==
+        "ARC_FEED(3.0000, 1.0000, 2.0000, 1.0000, -1, 0.1000, 0.0000, 0.0000, 0.0000)");
+  // Incremental R arc: end (2, 2); a quarter circle about (2, 1).
+  CHECK(format_canon(arcs[1]) ==
+        "ARC_FEED(2.0000, 2.0000, 2.0000, 1.0000, 1, 0.1000, 0.0000, 0.0000, 0.0000)");
+}
+
+TEST_CASE("G93 arcs get the feed that makes them last 1/F minutes") {
+  const Toolpath p = run("G21 G0 X0 Y0 Z0\nG93 G2 X10 Y0 R5 F2\nM2\n");
+  const auto rates = of_kind(p, CanonKind::SetFeedRate);
+  REQUIRE(rates.size() == 1);
+  CHECK(rates[0].value == doctest::Approx(5 * std::numbers::pi * 2)); // length * F
+}

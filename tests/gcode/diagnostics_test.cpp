@@ -1,0 +1,110 @@
+// What the interpreter says about programs it cannot fully honour, how dwell times are read in
+// each dialect, and how the dialect is guessed.
+#include <doctest/doctest.h>
+
+#include "program_runner.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+TEST_CASE("unknown G and M codes warn with file, line and column, the motion still counts") {
+  const Toolpath p = run("G21 G0 X0 Y0\n  G1 G300 X5 F100\nM200\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 2);
+  CHECK(w[0].file == "test.ngc");
+  CHECK(w[0].line == 2);
+  CHECK(w[0].column == 6);
+  CHECK(w[0].message.find("G300") != std::string::npos);
+  CHECK(format_diagnostic(w[0]).rfind("test.ngc:2:6: warning: ", 0) == 0);
+  CHECK(w[1].line == 3);
+  CHECK(w[1].message.find("M200") != std::string::npos);
+  CHECK(moves(p).back() == "STRAIGHT_FEED(5.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(p.result.completed);
+}
+
+TEST_CASE("bad words and unclosed comments are errors, the block is skipped, the run goes on") {
+  const Toolpath p = run("G21\nG0 X1 Y\nG0 X2 (open comment\nG0 X3 &\nG1.55 X4\nG0 X5\nM2\n");
+  const auto e = with_severity(p, Severity::Error);
+  REQUIRE(e.size() == 4);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].column == 7);
+  CHECK(e[1].line == 3);
+  CHECK(e[1].column == 7);
+  CHECK(e[1].message.find("')'") != std::string::npos);
+  CHECK(e[2].line == 4);
+  CHECK(e[2].column == 7);
+  CHECK(e[3].line == 5);
+  CHECK(e[3].column == 1);
+  CHECK(moves(p) == std::vector<std::string>{
+                        "STRAIGHT_TRAVERSE(5.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"});
+}
+
+TEST_CASE("a program without M2/M30 warns at its last line") {
+  const Toolpath p = run("G21\nG0 X1\n");
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].line == 2);
+  CHECK(p.result.completed);
+}
+
+TEST_CASE("dwell units per dialect") {
+  auto dwell = [](const std::string& text, const std::string& dialect) {
+    const auto d = of_kind(run(text, dialect), CanonKind::Dwell);
+    return d.empty() ? -1.0 : d[0].value;
+  };
+  // LinuxCNC: P in seconds.
+  CHECK(dwell("G4 P1.5\nM2\n", "linuxcnc") == doctest::Approx(1.5));
+  CHECK(dwell("G4 P2\nM2\n", "linuxcnc") == doctest::Approx(2.0));
+  // Fanuc: P in milliseconds, X in seconds.
+  CHECK(dwell("G4 P1500\nM30\n", "fanuc") == doctest::Approx(1.5));
+  CHECK(dwell("G4 X2.5\nM30\n", "fanuc") == doctest::Approx(2.5));
+  // Haas: an integer P is milliseconds, a P with a decimal point seconds.
+  CHECK(dwell("G4 P1000\nM30\n", "haas") == doctest::Approx(1.0));
+  CHECK(dwell("G4 P1.5\nM30\n", "haas") == doctest::Approx(1.5));
+  CHECK(dwell("G4 P2.\nM30\n", "haas") == doctest::Approx(2.0));
+  // G82's P follows the same rule as G4's in Fanuc.
+  const auto d =
+      of_kind(run("G21 G0 Z5\nG98 G82 X1 Z-1 R1 P500 F100\nM30\n", "fanuc"), CanonKind::Dwell);
+  REQUIRE(d.size() == 1);
+  CHECK(d[0].value == doctest::Approx(0.5));
+  CHECK(format_canon(d[0]) == "DWELL(0.5000)");
+  // A dwell without its time is an error.
+  CHECK(errors(run("G4\nM2\n")) == 1);
+}
+
+TEST_CASE("dialect detection") {
+  auto detect = [](const std::string& text) {
+    return detect_dialect(make_source("x.nc", text)).name;
+  };
+  CHECK(detect("G21\nG0 X1\nM2\n") == "linuxcnc");
+  CHECK(detect("o<pocket> sub\nG0 X1\no<pocket> endsub\nM2\n") == "linuxcnc");
+  CHECK(detect("%\nO1234 (PART)\nG21\nM98 P2000\nM30\n%\n") == "fanuc");
+  CHECK(detect("%\nO1234 (HAAS VF2)\nG187 P1\nM30\n%\n") == "haas");
+  CHECK(detect("$110=500\nG21 G0 X1\n") == "grbl");
+  CHECK(detect("(Mach3 post)\nG21\n") == "mach3");
+  // The detected dialect is the one used when none is given.
+  const Toolpath p = run("O0001\nG4 P2000\nM30\n", "");
+  CHECK(p.result.dialect.name == "fanuc");
+  CHECK(of_kind(p, CanonKind::Dwell)[0].value == doctest::Approx(2.0));
+  CHECK(find_dialect("Sinumerik")->name == "siemens");
+  CHECK_FALSE(find_dialect("heidenhain").has_value());
+}
+
+TEST_CASE(
+    "comment syntax is dialect data: the semicolon ends the block on Fanuc, comments on LinuxCNC") {
+  CHECK(errors(run("G21 G0 X1 ; move\nM2\n", "linuxcnc")) == 0);
+  CHECK(errors(run("G21 G0 X1 ; move\nM30\n", "fanuc")) == 1);
+  const Toolpath msg = run("(MSG, tool change next)\nM2\n");
+  const auto m = of_kind(msg, CanonKind::Message);
+  REQUIRE(m.size() == 1);
+  CHECK(format_canon(m[0]) == "MESSAGE(\" tool change next\")");
+}
+
+TEST_CASE("block delete is honoured only when asked for") {
+  const SourceFile s = make_source("bd.ngc", "G21\n/G0 X1\nG0 Y1\nM2\n");
+  InterpreterOptions o;
+  CHECK(moves(interpret(s, o)).size() == 2);
+  o.block_delete = true;
+  CHECK(moves(interpret(s, o)).size() == 1);
+}

@@ -1,0 +1,95 @@
+// Expressions, functions and parameters. Every expected value is what `rs274 -g` gives for the
+// same expression.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "program_runner.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+// Runs "G0 X[expr]" after `setup` and returns X in mm (NaN when the move is missing).
+double x_of(const std::string& expr, const std::string& setup = "") {
+  const Toolpath p = run("G21\n" + setup + "G0 X" + expr + "\nM2\n");
+  const auto m = move_commands(p);
+  return m.empty() ? std::nan("") : m.back().end.x;
+}
+} // namespace
+
+TEST_CASE("operator precedence: ** before * / MOD before + - before comparisons before logic") {
+  CHECK(x_of("[1+2*3]") == 7.0);
+  CHECK(x_of("[2**3**2]") == 64.0); // left to right
+  CHECK(x_of("[-2**2]") == 4.0);    // unary minus binds tighter than **
+  CHECK(x_of("[10/4]") == 2.5);
+  CHECK(x_of("[1+2 GT 2 AND 0 OR 1]") == 1.0);
+  CHECK(x_of("[7 XOR 0]") == 1.0);
+  CHECK(x_of("[[1+2]*3]") == 9.0);
+}
+
+TEST_CASE("functions: two-argument ATAN in degrees, rounding, roots and trigonometry") {
+  CHECK(x_of("[ATAN[1]/[-1]]") == doctest::Approx(135.0));
+  CHECK(x_of("[ROUND[-2.5]]") == -3.0);
+  CHECK(x_of("[ROUND[2.4]]") == 2.0);
+  CHECK(x_of("[FIX[-2.5]]") == -3.0);
+  CHECK(x_of("[FUP[-2.5]]") == -2.0);
+  CHECK(x_of("[SQRT[16]+ABS[-1]]") == 5.0);
+  CHECK(x_of("[SIN[30]*COS[60]]") == doctest::Approx(0.25));
+  CHECK(x_of("[EXP[0]+LN[1]]") == 1.0);
+  CHECK(x_of("[ACOS[0]]") == doctest::Approx(90.0));
+  CHECK(x_of("[TAN[45]]") == doctest::Approx(1.0));
+  CHECK(x_of("abs[-3]") == 3.0); // a function may stand as a word's value
+}
+
+TEST_CASE("MOD takes the sign of nothing: results are never negative") {
+  CHECK(x_of("[-7 MOD 3]") == 2.0);
+  CHECK(x_of("[7 MOD -3]") == 1.0);
+  CHECK(x_of("[7.5 MOD 2]") == 1.5);
+}
+
+TEST_CASE("EQ and NE compare with rs274's tolerance of 0.0001") {
+  CHECK(x_of("[1 EQ 1.00001]") == 1.0);
+  CHECK(x_of("[1 EQ 1.001]") == 0.0);
+  CHECK(x_of("[1 NE 1.00001]") == 0.0);
+  CHECK(x_of("[2 GE 2]") == 1.0);
+  CHECK(x_of("[2 LT 2]") == 0.0);
+}
+
+TEST_CASE("named and numbered parameters, EXISTS, indirect parameters") {
+  CHECK(x_of("#1", "#1=5\n") == 5.0);
+  CHECK(x_of("#<depth>", "#<Depth>=3\n") == 3.0); // names are case-insensitive
+  CHECK(x_of("#<_global>", "#<_global>=4\n") == 4.0);
+  CHECK(x_of("[EXISTS[#<depth>]+EXISTS[#<nope>]*10]", "#<depth>=3\n") == 1.0);
+  CHECK(x_of("#[1+1]", "#2=6\n") == 6.0);
+  CHECK(x_of("##3", "#3=4\n#4=9\n") == 9.0);
+}
+
+TEST_CASE("assignments take effect after the line, all reading the old values") {
+  // rs274: X5 (the old #1), then #2 = old #1 + 1 = 1.
+  const Toolpath p = run("G21\n#1=5\n#1=10 #2=[#1+1] G0 X#1\nG0 Y#2 Z#1\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto m = move_commands(p);
+  REQUIRE(m.size() == 2);
+  CHECK(m[0].end.x == 5.0);
+  CHECK(m[1].end.y == 6.0);
+  CHECK(m[1].end.z == 10.0);
+}
+
+TEST_CASE("expression errors name the column and skip the block") {
+  const Toolpath p = run("G21\nG0 X[1/0]\nG0 Y#<unset>\nG0 X[SQRT[-1]]\nG0 X[1+]\nG0 Z1\nM2\n");
+  const auto e = with_severity(p, Severity::Error);
+  REQUIRE(e.size() == 4);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].column == 4);
+  CHECK(e[0].message.find("division by zero") != std::string::npos);
+  CHECK(e[1].message.find("unset") != std::string::npos);
+  CHECK(e[3].line == 5);
+  CHECK(moves(p).size() == 1);
+}
+
+TEST_CASE("system parameters: #<_x> and friends in program units") {
+  CHECK(x_of("[#<_y>*2]", "G20 G0 Y1.5\n") == doctest::Approx(3.0 * 25.4));
+  CHECK(x_of("#<_metric>") == 1.0);
+  CHECK(x_of("#5220") == 1.0); // G54 is the active system
+}

@@ -1,0 +1,69 @@
+// Test helpers: run a program held in memory through the interpreter and look at what came out.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+
+namespace ncjoule::test {
+
+// Interprets `text` as file "test.ngc" in the named dialect ("" = detect from the text).
+inline Toolpath run(const std::string& text, const std::string& dialect = "linuxcnc",
+                    ToolTable tools = {}) {
+  const SourceFile source = make_source("test.ngc", text);
+  InterpreterOptions options;
+  if (!dialect.empty()) options.dialect = find_dialect(dialect);
+  options.tools = std::move(tools);
+  options.max_commands = 100000;
+  return interpret(source, options);
+}
+
+// The rs274-style lines of the commands that have one.
+inline std::vector<std::string> canon(const Toolpath& path) {
+  std::vector<std::string> lines;
+  for (const CanonCommand& c : path.commands)
+    if (std::string line = format_canon(c); !line.empty()) lines.push_back(std::move(line));
+  return lines;
+}
+
+inline bool is_move(CanonKind k) {
+  return k == CanonKind::Traverse || k == CanonKind::Feed || k == CanonKind::Arc ||
+         k == CanonKind::Probe || k == CanonKind::Dwell;
+}
+
+// Only moves and dwells, as rs274 prints them.
+inline std::vector<std::string> moves(const Toolpath& path) {
+  std::vector<std::string> lines;
+  for (const CanonCommand& c : path.commands)
+    if (is_move(c.kind)) lines.push_back(format_canon(c));
+  return lines;
+}
+
+// The move commands themselves.
+inline std::vector<CanonCommand> move_commands(const Toolpath& path) {
+  std::vector<CanonCommand> out;
+  for (const CanonCommand& c : path.commands)
+    if (is_move(c.kind)) out.push_back(c);
+  return out;
+}
+
+inline std::vector<CanonCommand> of_kind(const Toolpath& path, CanonKind kind) {
+  std::vector<CanonCommand> out;
+  for (const CanonCommand& c : path.commands)
+    if (c.kind == kind) out.push_back(c);
+  return out;
+}
+
+inline std::vector<Diagnostic> with_severity(const Toolpath& path, Severity severity) {
+  std::vector<Diagnostic> out;
+  for (const Diagnostic& d : path.result.diagnostics)
+    if (d.severity == severity) out.push_back(d);
+  return out;
+}
+
+inline std::size_t errors(const Toolpath& path) {
+  return with_severity(path, Severity::Error).size();
+}
+
+} // namespace ncjoule::test

@@ -1,0 +1,141 @@
+// Subprograms and control flow: LinuxCNC O-words, Fanuc M98/M99, Haas M97 and G65 macro calls.
+// The LinuxCNC program's moves are those `rs274 -g` prints for it.
+#include <doctest/doctest.h>
+
+#include <cstdio>
+
+#include "program_runner.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+std::string T(double x, double y, double z) {
+  char b[128];
+  std::snprintf(b, sizeof b, "STRAIGHT_TRAVERSE(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y,
+                z);
+  return b;
+}
+std::string F(double x, double y, double z) {
+  char b[128];
+  std::snprintf(b, sizeof b, "STRAIGHT_FEED(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y, z);
+  return b;
+}
+} // namespace
+
+TEST_CASE("o-word sub/call with arguments, nested calls, return value, loops and branches") {
+  const std::string program = R"(G21
+o<square> sub
+  G1 X#1 F100
+  o<inner> call [#1*2]
+o<square> endsub [#1+10]
+o<inner> sub
+  G1 Y#1
+o<inner> endsub
+o<square> call [3]
+#100 = #<_value>
+G0 X#100
+#1 = 0
+o1 while [#1 LT 3]
+  #1 = [#1 + 1]
+  o2 if [#1 EQ 2]
+    o1 continue
+  o2 endif
+  G0 Z#1
+o1 endwhile
+#2 = 0
+o3 do
+  #2 = [#2 + 1]
+  o4 if [#2 GT 5]
+    o3 break
+  o4 elseif [#2 EQ 2]
+    G0 Y20
+  o4 else
+    G0 Y[#2]
+  o4 endif
+o3 while [#2 LT 100]
+o5 repeat [2]
+  G0 X-1
+o5 endrepeat
+M2
+)";
+  const Toolpath p = run(program);
+  CHECK(errors(p) == 0);
+  CHECK(p.result.completed);
+  const std::vector<std::string> expected = {
+      F(3, 0, 0),  F(3, 6, 0),  // the call and the nested call with [#1*2]
+      T(13, 6, 0),              // the return value [#1+10]
+      T(13, 6, 1), T(13, 6, 3), // while, with #1 = 2 skipped by continue
+      T(13, 1, 3), T(13, 20, 3), T(13, 3, 3), T(13, 4, 3), T(13, 5, 3), // do-while, if/elseif/else
+      T(-1, 5, 3), T(-1, 5, 3)};                                        // repeat [2]
+  CHECK(moves(p) == expected);
+  // Moves made inside a call point at the call site in the main program.
+  const auto m = move_commands(p);
+  CHECK(m[1].line == 6);      // G1 Y#1 inside o<inner>
+  CHECK(m[1].call_line == 8); // o<square> call [3]
+  CHECK(m[2].call_line == 10);
+}
+
+TEST_CASE("subroutine locals: #1-#30 are restored after the call") {
+  const Toolpath p = run("G21\no100 sub\n#1=7\n#<local>=1\no100 endsub\n#1=2\no100 call [5]\n"
+                         "G0 X#1\nM2\n");
+  CHECK(errors(p) == 0);
+  CHECK(moves(p) == std::vector<std::string>{T(2, 0, 0)});
+}
+
+TEST_CASE("calling an undefined subroutine is an error with the column, the run goes on") {
+  const Toolpath p = run("G21\n  o<missing> call\nG0 X1\nM2\n");
+  const auto e = with_severity(p, Severity::Error);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].column == 3);
+  CHECK(moves(p).size() == 1);
+}
+
+TEST_CASE("Fanuc M98 P L calls an O-number subprogram that ends with M99") {
+  const std::string program = "%\nO0001 (MAIN)\nG21 G90\nG0 X0 Y0 Z5\nM98 P1000 L3\nG0 Z10\n"
+                              "M30\nO1000 (SUB)\nG91 G1 X10 F200\nG90\nM99\n%\n";
+  const Toolpath p = run(program, "fanuc");
+  CHECK(errors(p) == 0);
+  const std::vector<std::string> expected = {T(0, 0, 5), F(10, 0, 5), F(20, 0, 5), F(30, 0, 5),
+                                             T(30, 0, 10)};
+  CHECK(moves(p) == expected);
+  // P<repeats><program> form: M98 P21000 = twice O1000.
+  const Toolpath packed =
+      run("O0001\nG21 G0 X0 Y0 Z5\nM98 P21000\nM30\nO1000\nG91 G1 X1 F100\nG90\n"
+          "M99\n",
+          "fanuc");
+  CHECK(moves(packed).size() == 3);
+  CHECK(moves(packed).back() == F(2, 0, 5));
+}
+
+TEST_CASE("Haas M97 calls a local subprogram at an N number") {
+  const std::string program = "O0001\nG21 G0 X0 Y0 Z1\nM97 P100\nM97 P100\nM30\nN100 G91 G1 Y5 "
+                              "F100\nG90\nM99\n";
+  const Toolpath p = run(program, "haas");
+  CHECK(errors(p) == 0);
+  const std::vector<std::string> expected = {T(0, 0, 1), F(0, 5, 1), F(0, 10, 1)};
+  CHECK(moves(p) == expected);
+  CHECK(errors(run("O1\nM97 P200\nM30\n", "haas")) == 1);
+}
+
+TEST_CASE("G65 passes letter arguments as #1 (A), #2 (B), #24 (X), #26 (Z)") {
+  const std::string program = "O0001\nG21 G0 X0 Y0 Z5\nG65 P9000 A2 B3 X7 Z-1\nG0 Z5\nM30\n"
+                              "O9000\nG1 X[#24+#1] Y#2 Z#26 F100\nM99\n";
+  const Toolpath p = run(program, "fanuc");
+  CHECK(errors(p) == 0);
+  const std::vector<std::string> expected = {T(0, 0, 5), F(9, 3, -1), T(9, 3, 5)};
+  CHECK(moves(p) == expected);
+}
+
+TEST_CASE("runaway loops and recursion stop with a diagnostic, not a hang") {
+  SourceFile s = make_source("loop.ngc", "o1 while [1]\nG0 X1\no1 endwhile\nM2\n");
+  InterpreterOptions o;
+  o.max_loop_iterations = 50;
+  const Toolpath loop = interpret(s, o);
+  CHECK(errors(loop) == 1);
+  CHECK(moves(loop).size() == 51);
+  const Toolpath recursive = run("o<r> sub\nG0 X1\no<r> call\no<r> endsub\no<r> call\nM2\n");
+  CHECK(errors(recursive) == 1);
+  CHECK_FALSE(recursive.result.completed);
+}

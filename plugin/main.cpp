@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "command_registry.hpp"
+#include "ncjoule/log.hpp"
 
 namespace ncjoule::cli {
 std::vector<SetupFunction>& registry() {
@@ -20,14 +21,17 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log what ncjoule does (to stderr)");
-  // Logs go to stderr: stdout carries the program's output (canon listings, JSON).
-  spdlog::set_default_logger(spdlog::stderr_logger_st("ncjoule"));
+  // Logs go to stderr (ncjoule::logger()): stdout carries the program's output (listings, JSON).
+  spdlog::set_default_logger(spdlog::stderr_logger_st("ncjoule-cli"));
   spdlog::set_level(spdlog::level::warn);
   int exit_code = kOk;
   for (const SetupFunction& setup : registry())
     setup(app, exit_code);
   app.parse_complete_callback([&] {
-    if (verbose) spdlog::set_level(spdlog::level::info);
+    if (verbose) {
+      spdlog::set_level(spdlog::level::info);
+      ncjoule::logger().set_level(spdlog::level::info);
+    }
   });
   try {
     app.parse(argc, argv);

@@ -1,7 +1,7 @@
 // The pipeline: interpret, plan, remove material, integrate power, summarise per line.
 #include <chrono>
 #include <exception>
-#include <spdlog/spdlog.h>
+#include "ncjoule/log.hpp"
 
 #include "line_summary.hpp"
 
@@ -29,7 +29,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.toolpath = interpret(source, interpreter);
   e.dialect = e.toolpath.result.dialect;
   e.diagnostics = e.toolpath.result.diagnostics;
-  spdlog::info("interpret: {} blocks, {} commands in {:.3f} s", e.toolpath.result.blocks,
+  logger().info("interpret: {} blocks, {} commands in {:.3f} s", e.toolpath.result.blocks,
                e.toolpath.commands.size(), seconds_since(t));
 
   // Tools come from the program's header comments; removal needs every tool it uses.
@@ -53,7 +53,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   }
   t = Clock::now();
   e.timeline = plan(e.toolpath.commands, machine, plan_options);
-  spdlog::info("plan: {} commands in {:.3f} s", e.toolpath.commands.size(), seconds_since(t));
+  logger().info("plan: {} commands in {:.3f} s", e.toolpath.commands.size(), seconds_since(t));
   for (Diagnostic d : e.timeline.diagnostics) {
     d.file = source.path;
     e.diagnostics.push_back(std::move(d));
@@ -72,7 +72,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
       e.failed = true;
       return e;
     }
-    spdlog::info("removal: {:.1f} mm^3 in {:.3f} s", e.removal->removed_mm3, seconds_since(t));
+    logger().info("removal: {:.1f} mm^3 in {:.3f} s", e.removal->removed_mm3, seconds_since(t));
     e.diagnostics.insert(e.diagnostics.end(), e.removal->diagnostics.begin(),
                          e.removal->diagnostics.end());
   }

@@ -4,7 +4,7 @@
 //  2. Look-ahead (lookahead.cpp) over the chain of moves.
 //  3. A velocity profile per move, the running clock, and the sampled path.
 #include <cmath>
-#include <spdlog/spdlog.h>
+#include "ncjoule/log.hpp"
 
 #include "dog_leg.hpp"
 #include "junction.hpp"
@@ -163,7 +163,7 @@ Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& m
   }
   timeline.total_s = clock;
   timeline.diagnostics = warnings.take();
-  spdlog::debug("planned {} commands ({} chained moves): {:.3f} s", commands.size(), items.size(),
+  logger().debug("planned {} commands ({} chained moves): {:.3f} s", commands.size(), items.size(),
                 clock);
   return timeline;
 }

@@ -26,6 +26,15 @@ struct Assignment {
   int column = 0;
 };
 
+// A word of two or more letters (Sinumerik MCALL, TRANS, CYCLE81(...), RPL=45; Fanuc macro B
+// keywords), kept by name for the interpreter to honour or warn about.
+struct Keyword {
+  std::string_view name; // lower case, letters, digits and '_'
+  std::string_view args; // inside "( )", or after '=': unevaluated, lower case, no blanks
+  bool has_parens = false;
+  int column = 0;
+};
+
 struct Comment {
   std::string_view text; // inside the parentheses, or after ';', as written
   int column = 0;
@@ -36,21 +45,27 @@ struct Block {
   std::vector<int> columns; // source column (1-based) of each byte of code
   std::vector<Word> words;
   std::vector<Assignment> assignments;
+  std::vector<Keyword> keywords;
   std::vector<Comment> comments;
-  bool block_delete = false; // line starts with '/'
-  bool percent = false;      // a '%' delimiter line
-  bool dollar = false;       // a grbl '$' settings line
+  bool block_delete = false;     // line starts with '/'
+  bool percent = false;          // a '%' delimiter line
+  std::string_view percent_name; // text after '%' on that line (Heidenhain "%NAME G71")
+  bool dollar = false;           // a grbl '$' settings line
   // O-word control flow (LinuxCNC) or O-number program header (Fanuc).
   bool has_o = false;
-  std::string o_label;        // "<name>" or digits, lower case
-  std::string o_keyword;      // sub, endsub, call, if, elseif, else, endif, while, endwhile,
-                              // do, repeat, endrepeat, return, break, continue; empty: header
-  std::string_view o_args;    // the rest of the line after the keyword
+  std::string o_label;     // "<name>" or digits, lower case
+  std::string o_keyword;   // sub, endsub, call, if, elseif, else, endif, while, endwhile,
+                           // do, repeat, endrepeat, return, break, continue; empty: header
+  std::string_view o_args; // the rest of the line after the keyword
   int o_column = 0;
   std::vector<Diagnostic> errors; // lexical errors (line numbers filled in by the caller)
+  // Problems that cost one word or character, not the block: the rest of the block runs.
+  std::vector<Diagnostic> warnings;
 
   void clear();
-  bool has_code() const { return !words.empty() || !assignments.empty() || has_o; }
+  bool has_code() const {
+    return !words.empty() || !assignments.empty() || !keywords.empty() || has_o;
+  }
 };
 
 // Cuts one source line into a block. `block` is reused to avoid allocations.

@@ -24,9 +24,12 @@ struct PlaneAxes {
 
 PlaneAxes plane_axes(Plane plane) {
   switch (plane) {
-  case Plane::XY: return {&Pose::x, &Pose::y, &Pose::z, 'x', 'y', 'z'};
-  case Plane::XZ: return {&Pose::z, &Pose::x, &Pose::y, 'z', 'x', 'y'};
-  case Plane::YZ: return {&Pose::y, &Pose::z, &Pose::x, 'y', 'z', 'x'};
+  case Plane::XY:
+    return {&Pose::x, &Pose::y, &Pose::z, 'x', 'y', 'z'};
+  case Plane::XZ:
+    return {&Pose::z, &Pose::x, &Pose::y, 'z', 'x', 'y'};
+  case Plane::YZ:
+    return {&Pose::y, &Pose::z, &Pose::x, 'y', 'z', 'x'};
   }
   return {&Pose::x, &Pose::y, &Pose::z, 'x', 'y', 'z'};
 }
@@ -42,8 +45,11 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   if (v.has('q')) cycle_q_ = *v['q'];
   if (v.has('p')) cycle_p_ = *v['p'];
   if (!have_cycle_r_) {
-    error(col, "canned cycle without an R word (retract plane): skipped");
-    return;
+    // Some posts drop R (FreeCAD's comparams writes only X Y Z I J F). rs274 refuses such a
+    // block; here the cycle starts from where the tool is, so the program still runs.
+    warning(col, "canned cycle without an R word (retract plane): R taken as the current height");
+    cycle_r_ = incremental_ ? 0.0 : (pos_.*ax.c) / u;
+    have_cycle_r_ = true;
   }
   if (!have_cycle_z_) {
     error(col, std::string("canned cycle without a ") + char(std::toupper(ax.c_letter)) +
@@ -76,7 +82,7 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   }
   double q = cycle_q_ * u;
   if ((cycle == Motion::G83 || cycle == Motion::G73) && q <= 0) {
-    error(col, "peck cycle needs a positive Q (peck depth): drilled in one go");
+    warning(col, "peck cycle needs a positive Q (peck depth): drilled in one go");
     q = r - bottom;
   }
   double dwell = cycle_p_;
@@ -89,9 +95,7 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
     p.*ax.a = a, p.*ax.b = b, p.*ax.c = c;
     return p;
   };
-  auto traverse = [&](double a, double b, double c) {
-    straight(CanonKind::Traverse, at(a, b, c));
-  };
+  auto traverse = [&](double a, double b, double c) { straight(CanonKind::Traverse, at(a, b, c)); };
   auto feed = [&](double a, double b, double c) { straight(CanonKind::Feed, at(a, b, c)); };
 
   double a = pos_.*ax.a, b = pos_.*ax.b;
@@ -174,6 +178,33 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       emit_simple(CanonKind::Dwell, dwell);
       feed(a, b, clear);
       break;
+    case Motion::G84:
+    case Motion::G74: {
+      // Tapping (Fanuc Operator's Manual, "Tapping cycle (G84)" and "Left-handed tapping cycle
+      // (G74)"; Haas Mill Operator's Manual, "G84 Tapping Canned Cycle", "G74 Reverse Tap"):
+      // feed down at F with the spindle turning (M3 for G84, M4 for G74), dwell P at the
+      // bottom, reverse the spindle, feed back out to R, restore the spindle's direction.
+      // With M29 (rigid tapping) the feed follows the spindle: the same moves at F = pitch x S.
+      // Under G98 a rapid then takes the tool to the initial level.
+      const char* how = rigid_tapping_ ? "rigid tap" : "tap";
+      straight(CanonKind::Feed, at(a, b, bottom), how);
+      if (dwell > 0) emit_simple(CanonKind::Dwell, dwell);
+      const SpindleDir dir =
+          state_.spindle != SpindleDir::Off
+              ? state_.spindle
+              : (cycle == Motion::G84 ? SpindleDir::Clockwise : SpindleDir::CounterClockwise);
+      const SpindleDir reversed =
+          dir == SpindleDir::Clockwise ? SpindleDir::CounterClockwise : SpindleDir::Clockwise;
+      state_.spindle = reversed;
+      emit_simple(reversed == SpindleDir::Clockwise ? CanonKind::SpindleClockwise
+                                                    : CanonKind::SpindleCounterClockwise);
+      straight(CanonKind::Feed, at(a, b, r), std::string(how) + " retract");
+      state_.spindle = dir;
+      emit_simple(dir == SpindleDir::Clockwise ? CanonKind::SpindleClockwise
+                                               : CanonKind::SpindleCounterClockwise);
+      if (clear > r) traverse(a, b, clear);
+      break;
+    }
     default:
       break;
     }

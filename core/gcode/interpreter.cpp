@@ -11,25 +11,89 @@ namespace {
 // Modal groups of G codes (x10). Two codes of one group in one block are an error.
 int g_group(int code) {
   switch (code) {
-  case 0: case 10: case 20: case 30: case 330: case 331: case 382: case 383: case 384: case 385:
-  case 730: case 760: case 800: case 810: case 820: case 830: case 840: case 850: case 860:
-  case 870: case 880: case 890:
+  case 0:
+  case 10:
+  case 20:
+  case 30:
+  case 330:
+  case 331:
+  case 382:
+  case 383:
+  case 384:
+  case 385:
+  case 730:
+  case 740:
+  case 760:
+  case 800:
+  case 810:
+  case 820:
+  case 830:
+  case 840:
+  case 850:
+  case 860:
+  case 870:
+  case 880:
+  case 890:
     return 1;
-  case 170: case 180: case 190: return 2;
-  case 900: case 910: return 3;
-  case 901: case 911: return 4;
-  case 930: case 940: case 950: return 5;
-  case 200: case 210: return 6;
-  case 400: case 410: case 411: case 420: case 421: return 7;
-  case 430: case 431: case 432: case 490: return 8;
-  case 980: case 990: return 10;
-  case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593:
+  case 170:
+  case 180:
+  case 190:
+    return 2;
+  case 900:
+  case 910:
+    return 3;
+  case 901:
+  case 911:
+    return 4;
+  case 930:
+  case 940:
+  case 950:
+    return 5;
+  case 200:
+  case 210:
+    return 6;
+  case 400:
+  case 410:
+  case 411:
+  case 420:
+  case 421:
+    return 7;
+  case 430:
+  case 431:
+  case 432:
+  case 490:
+    return 8;
+  case 980:
+  case 990:
+    return 10;
+  case 540:
+  case 550:
+  case 560:
+  case 570:
+  case 580:
+  case 590:
+  case 591:
+  case 592:
+  case 593:
     return 12;
-  case 610: case 611: case 640: return 13;
-  case 40: case 100: case 280: case 281: case 300: case 301: case 530: case 920: case 921:
-  case 922: case 923:
+  case 610:
+  case 611:
+  case 640:
+    return 13;
+  case 40:
+  case 100:
+  case 280:
+  case 281:
+  case 300:
+  case 301:
+  case 530:
+  case 920:
+  case 921:
+  case 922:
+  case 923:
     return 0;
-  default: return -1;
+  default:
+    return -1;
   }
 }
 
@@ -47,11 +111,23 @@ bool has_m(const BlockValues& v, int code) {
 }
 
 // Codes that change only how a controller blends or smooths the path: kept as planner hints.
-// (G5.1 is a spline in LinuxCNC but Fanuc's AI contour control in the Fanuc family.)
+// - Haas G187 P1/P2/P3 E<tol> (Haas Mill Operator's Manual, "G187 Accuracy Control"): rough,
+//   medium or finish smoothing, E the corner rounding tolerance.
+// - Haas G103 P<n> ("G103 Limit Block Lookahead"): at most n blocks of look-ahead, P0 none.
+// - Fanuc G05.1 Q1/Q0 (AI contour control on/off), G08 P1/P0 (advanced preview control), G05
+//   P10000 (high-speed machining mode). G5/G5.1 are splines in LinuxCNC, hence the dialect test.
+// - Sinumerik G641/G642/G643/G644/G645: continuous path with rounding.
 bool is_planner_hint_g(int code, const Dialect& dialect) {
   if (code == 1870 || code == 1030 || code == 80 || code == 81) return true;
+  if (dialect.sinumerik_words && code >= 6410 && code <= 6450) return true;
   const bool linuxcnc = dialect.o_word_subroutines;
   return !linuxcnc && (code == 51 || code == 50);
+}
+
+std::string number_text(double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  return buf;
 }
 
 } // namespace
@@ -68,6 +144,7 @@ Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& opt
       dialect_(options.dialect ? *options.dialect : detect_dialect(source)), tools_(options.tools) {
   result_.dialect = dialect_;
   retract_to_r_ = dialect_.retract_to_r_by_default;
+  arc_incremental_ = !dialect_.arc_centre_absolute;
   params_.set_system_lookup(
       [this](std::string_view name, double& value) { return system_parameter(name, value); });
 }
@@ -89,8 +166,10 @@ bool Interpreter::system_parameter(std::string_view name, double& value) const {
   if (name == "_current_tool") return value = state_.tool, true;
   if (name == "_selected_tool") return value = selected_tool_, true;
   if (name == "_motion_mode") return value = int(motion_), true;
-  if (name == "_plane") return value = state_.plane == Plane::XY ? 170 : state_.plane == Plane::XZ ? 180 : 190, true;
-  if (name == "_coord_system") return value = g5x_index_ <= 6 ? 530 + 10 * g5x_index_ : 590 + (g5x_index_ - 6), true;
+  if (name == "_plane")
+    return value = state_.plane == Plane::XY ? 170 : state_.plane == Plane::XZ ? 180 : 190, true;
+  if (name == "_coord_system")
+    return value = g5x_index_ <= 6 ? 530 + 10 * g5x_index_ : 590 + (g5x_index_ - 6), true;
   if (name == "_line") return value = current_line_ + 1, true;
   if (name == "_task") return value = 0, true; // not running under a GUI preview
   if (name == "_value_returned") return value = 0, true;
@@ -137,8 +216,9 @@ CanonCommand Interpreter::make(CanonKind kind) const {
 void Interpreter::emit(CanonCommand c) {
   ++command_count_;
   if (options_.max_commands && command_count_ > options_.max_commands) {
-    if (!finished_) error(0, "more than " + std::to_string(options_.max_commands) +
-                                 " canonical commands: stopped (runaway loop?)");
+    if (!finished_)
+      error(0, "more than " + std::to_string(options_.max_commands) +
+                   " canonical commands: stopped (runaway loop?)");
     stop();
     return;
   }
@@ -167,11 +247,12 @@ void Interpreter::scan_labels() {
   for (std::size_t i = 0; i < source_.lines.size(); ++i) {
     std::string_view l = source_.line_text(i);
     std::size_t k = 0;
-    while (k < l.size() && (l[k] == ' ' || l[k] == '\t' || l[k] == '/')) ++k;
+    while (k < l.size() && (l[k] == ' ' || l[k] == '\t' || l[k] == '/'))
+      ++k;
     if (k < l.size() && (l[k] == 'n' || l[k] == 'N')) {
       ++k;
-      while (k < l.size() && (std::isdigit(static_cast<unsigned char>(l[k])) || l[k] == ' ' ||
-                              l[k] == '.'))
+      while (k < l.size() &&
+             (std::isdigit(static_cast<unsigned char>(l[k])) || l[k] == ' ' || l[k] == '.'))
         ++k;
     }
     if (k >= l.size() || (l[k] != 'o' && l[k] != 'O')) continue;
@@ -220,6 +301,8 @@ InterpretResult Interpreter::run() {
     current_call_line_ = frames_.empty() ? int(pc_) : frames_.front().call_line;
     next_pc_ = pc_ + 1;
     lex_line(source_.line_text(pc_), dialect_, block_);
+    for (Diagnostic d : block_.warnings)
+      report(d.severity, d.column, std::move(d.message));
     if (!block_.errors.empty()) {
       for (Diagnostic d : block_.errors) {
         d.file = source_.path;
@@ -228,9 +311,18 @@ InterpretResult Interpreter::run() {
       }
       note(0, "block skipped");
     } else if (block_.percent) {
-      // A '%' opens the program; the next one closes it (LinuxCNC, Fanuc tape format).
+      // A '%' opens the program; the next one closes it (LinuxCNC, Fanuc tape format). A name
+      // after it ("%prog1", "%PM") names the program; Heidenhain's "%NAME G71" gives its units.
       if (seen_percent_) finished_ = true, result_.completed = true;
       seen_percent_ = true;
+      if (dialect_.g70_g71_units && !finished_) {
+        const std::string_view rest = block_.percent_name;
+        const bool inch = rest.find("g70") != std::string_view::npos;
+        if ((inch || rest.find("g71") != std::string_view::npos) && inch != state_.inch) {
+          state_.inch = inch;
+          emit_simple(CanonKind::LengthUnits);
+        }
+      }
     } else if (block_.dollar || (block_.block_delete && options_.block_delete)) {
       // grbl settings lines and deleted blocks do nothing.
     } else if (block_.has_o) {
@@ -243,7 +335,8 @@ InterpretResult Interpreter::run() {
       for (const Comment& c : block_.comments) {
         std::string_view t = c.text;
         std::string lowered(t.substr(0, 4));
-        for (char& ch : lowered) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        for (char& ch : lowered)
+          ch = char(std::tolower(static_cast<unsigned char>(ch)));
         if (lowered == "msg,") emit_simple(CanonKind::Message, 0, std::string(t.substr(4)));
       }
     }
@@ -302,8 +395,10 @@ void Interpreter::call_subroutine(std::size_t target_line, std::vector<double> a
   f.call_line = frames_.empty() ? int(pc_) : frames_.front().call_line;
   params_.push_scope();
   if (!fanuc || !args.empty()) {
-    for (int i = 1; i <= 30; ++i) params_.at(i) = 0;
-    for (std::size_t i = 0; i < args.size() && i < 30; ++i) params_.at(int(i) + 1) = args[i];
+    for (int i = 1; i <= 30; ++i)
+      params_.at(i) = 0;
+    for (std::size_t i = 0; i < args.size() && i < 30; ++i)
+      params_.at(int(i) + 1) = args[i];
   }
   frames_.push_back(std::move(f));
   next_pc_ = target_line + 1;
@@ -578,8 +673,10 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
   }
   for (const Pending& w : pending) {
     std::string err;
-    if (!w.name.empty()) params_.write(w.name, w.value);
-    else if (!params_.write(w.index, w.value, err)) error(w.column, err), ok = false;
+    if (!w.name.empty())
+      params_.write(w.name, w.value);
+    else if (!params_.write(w.index, w.value, err))
+      error(w.column, err), ok = false;
   }
   return ok;
 }
@@ -611,10 +708,15 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     note(0, "block skipped");
     return;
   }
+  // Words of several letters (Sinumerik frames and cycles, ...), before any motion.
+  std::optional<SinumerikCycle> cycle_now;
+  if (!b.keywords.empty()) keywords(b, v, cycle_now);
+  const bool positioning = v.has_axis();
   // 1. Comments and messages.
   for (const Comment& c : b.comments) {
     std::string lowered(c.text.substr(0, 4));
-    for (char& ch : lowered) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    for (char& ch : lowered)
+      ch = char(std::tolower(static_cast<unsigned char>(ch)));
     if (lowered == "msg,") emit_simple(CanonKind::Message, 0, std::string(c.text.substr(4)));
   }
   // Unknown codes: warned about, never fatal.
@@ -622,17 +724,37 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     if (g_group(code) >= 0) continue;
     if (is_planner_hint_g(code, dialect_)) {
       std::string text = g_name(code);
-      if (v.has('p')) text += " P" + std::to_string(*v['p']);
+      for (char letter : {'p', 'q', 'e', 'r', 'l'})
+        if (v.has(letter))
+          text += std::string(" ") + char(std::toupper(letter)) + number_text(*v[letter]);
       emit_simple(CanonKind::PlannerHint, code / 10.0, text);
       continue;
     }
+    if (dialect_.g70_g71_units && (code == 700 || code == 710 || code == 7000 || code == 7100)) {
+      // Heidenhain ISO and Sinumerik: G70 (G700) inch, G71 (G710) millimetres.
+      const bool inch = code == 700 || code == 7000;
+      if (inch != state_.inch) state_.inch = inch, emit_simple(CanonKind::LengthUnits);
+      continue;
+    }
     switch (code) {
-    case 70: case 80: case 150: case 160: case 960: case 970: case 911: case 901:
+    case 70:
+    case 80:
+    case 150:
+    case 160:
+    case 960:
+    case 970:
+    case 911:
+    case 901:
       break; // lathe diameter mode, spindle modes: no effect on milling motion
-    case 50: case 51:
+    case 2900:
+    case 2910:
+      break; // Sinumerik G290/G291: Siemens or ISO mode; both are read here
+    case 50:
+    case 51:
       if (dialect_.o_word_subroutines) break; // LinuxCNC splines: see the motion step
       [[fallthrough]];
-    case 410: case 420:
+    case 410:
+    case 420:
       break;
     default:
       warning(v.g_column(code), "unknown or unsupported code " + g_name(code) +
@@ -647,7 +769,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   // 3. Feed mode, 4. feed rate.
   for (int code : v.g) {
     if (code == 930 || code == 940 || code == 950) {
-      FeedMode m = code == 930 ? FeedMode::InverseTime
+      FeedMode m = code == 930   ? FeedMode::InverseTime
                    : code == 940 ? FeedMode::UnitsPerMinute
                                  : FeedMode::UnitsPerRevolution;
       if (m != state_.feed_mode) {
@@ -665,7 +787,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     if (state_.feed_mode != FeedMode::InverseTime) emit_simple(CanonKind::SetFeedRate, f);
   }
   // 5. Spindle speed.
-  if (v.has('s')) {
+  if (v.has('s') && !(dialect_.dwell_s_word && has_g(v, 40))) {
     const double s = *v['s'];
     if (s < 0) error(v.column['s' - 'a'], "negative spindle speed");
     state_.spindle_rpm = std::abs(s);
@@ -716,10 +838,42 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   }
   for (int m : v.m) {
     switch (m) {
-    case 0: case 1: case 2: case 30: case 60: case 3: case 4: case 5: case 6: case 7: case 8:
-    case 9: case 61: case 98: case 99: case 97: break;
-    case 48: case 49: case 50: case 51: case 52: case 53: case 62: case 63: case 64: case 65:
-    case 66: case 67: case 68: case 70: case 71: case 72: case 73: case 19: case 29:
+    case 0:
+    case 1:
+    case 2:
+    case 30:
+    case 60:
+    case 3:
+    case 4:
+    case 5:
+    case 6:
+    case 7:
+    case 8:
+    case 9:
+    case 61:
+    case 98:
+    case 99:
+    case 97:
+      break;
+    case 48:
+    case 49:
+    case 50:
+    case 51:
+    case 52:
+    case 53:
+    case 62:
+    case 63:
+    case 64:
+    case 65:
+    case 66:
+    case 67:
+    case 68:
+    case 70:
+    case 71:
+    case 72:
+    case 73:
+    case 19:
+    case 29:
       break; // overrides, I/O, state save, spindle orient: no motion, no time of their own
     default:
       if (m >= 100 && m <= 199)
@@ -732,11 +886,13 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   // 10. Dwell.
   if (has_g(v, 40)) {
     double seconds = 0;
-    if (v.has('p')) {
+    if (dialect_.dwell_s_word && v.has('s') && !v.has('p')) {
+      seconds = *v['s']; // Marlin, RepRapFirmware: G4 S in seconds
+    } else if (v.has('p')) {
       const double p = *v['p'];
       const bool integer_p = std::abs(p - std::round(p)) < 1e-9;
-      if (dialect_.dwell_p_in_ms || (dialect_.dwell_p_integer_is_ms && integer_p &&
-                                     b.code.find('.', 0) == std::string::npos))
+      if (dialect_.dwell_p_in_ms ||
+          (dialect_.dwell_p_integer_is_ms && integer_p && b.code.find('.', 0) == std::string::npos))
         seconds = p / 1000.0;
       else
         seconds = p;
@@ -839,8 +995,12 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   bool axes_used = false;
   for (int code : v.g) {
     switch (code) {
-    case 280: go_home(v, param::kG28), axes_used = true; break;
-    case 300: go_home(v, param::kG30), axes_used = true; break;
+    case 280:
+      go_home(v, param::kG28), axes_used = true;
+      break;
+    case 300:
+      go_home(v, param::kG30), axes_used = true;
+      break;
     case 281:
     case 301: {
       const int base = code == 281 ? param::kG28 : param::kG30;
@@ -860,11 +1020,15 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
       else
         set_tool_data(v);
       break;
-    case 920: case 921: case 922: case 923:
+    case 920:
+    case 921:
+    case 922:
+    case 923:
       if (code == 920) axes_used = true;
       set_axis_offsets(v);
       break;
-    default: break;
+    default:
+      break;
     }
   }
   // 20. Motion.
@@ -872,20 +1036,22 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     if (g_group(code) != 1) continue;
     // A series of cycles ends with any motion code that is not a cycle (G80 included); one
     // cycle code after another (G81 then G82) goes on with the same series.
-    const bool cycle = code == 730 || (code >= 810 && code <= 890);
+    const bool cycle = code == 730 || code == 740 || (code >= 810 && code <= 890);
     if (!cycle) have_cycle_initial_height_ = false;
     motion_ = Motion(code);
   }
   const bool g53 = has_g(v, 530);
-  const bool motion_word_given = std::any_of(v.g.begin(), v.g.end(),
-                                             [](int c) { return g_group(c) == 1; });
+  const bool motion_word_given =
+      std::any_of(v.g.begin(), v.g.end(), [](int c) { return g_group(c) == 1; });
   if (dialect_.o_word_subroutines && (has_g(v, 50) || has_g(v, 51))) {
     spline(v, has_g(v, 51));
     axes_used = true;
   }
   if (!axes_used && (v.has_axis() || (motion_word_given && motion_ != Motion::None))) {
     switch (motion_) {
-    case Motion::Rapid: straight(CanonKind::Traverse, target_from_words(v, g53)); break;
+    case Motion::Rapid:
+      straight(CanonKind::Traverse, target_from_words(v, g53));
+      break;
     case Motion::Linear:
       if (state_.feed_mode == FeedMode::InverseTime && !v.has('f') && v.has_axis())
         error(v.column['g' - 'a'], "G93 inverse time: a feed move needs an F word");
@@ -902,6 +1068,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     case Motion::ArcCW:
     case Motion::ArcCCW:
       if (v.has_axis() || v.has('i') || v.has('j') || v.has('k') || v.has('r')) {
+        rotate_arc_offsets(v);
         if (state_.feed <= 0) error(v.column['g' - 'a'], "arc with no feed rate (F word missing)");
         arc(v, motion_ == Motion::ArcCW);
       }
@@ -926,7 +1093,8 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
         warning(v.g_column(760), "G76 threading cycle is not supported: skipped");
       break;
     default:
-      if (v.has_axis()) canned_cycle(motion_, v);
+      if (v.has_axis())
+        canned_cycle(motion_, v);
       else if (motion_word_given) {
         // A cycle code alone sets the mode (and its sticky values) without drilling.
         if (v.has('r')) cycle_r_ = *v['r'], have_cycle_r_ = true;
@@ -935,8 +1103,14 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
       break;
     }
   }
+  // 20b. Sinumerik cycles: one called in this block, or the MCALL cycle after a positioning.
+  if (cycle_now)
+    sinumerik_cycle(*cycle_now);
+  else if (modal_cycle_ && positioning && v.has_axis())
+    sinumerik_cycle(*modal_cycle_);
   // 21. Stops and subprogram calls (Fanuc, Haas).
   for (int m : v.m) {
+    if (m == 29) rigid_tapping_ = true; // Fanuc/Haas rigid tapping mode for G84/G74
     if (m == 0) emit_simple(CanonKind::ProgramStop);
     if (m == 1) emit_simple(CanonKind::OptionalStop);
     if (m == 60) emit_simple(CanonKind::ProgramStop);
@@ -979,8 +1153,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
       }
       if (!target) {
         error(v.column['p' - 'a'], (m == 98 ? "subprogram O" : "local subprogram N") +
-                                       std::to_string(p) +
-                                       " is not in this file: call skipped");
+                                       std::to_string(p) + " is not in this file: call skipped");
         continue;
       }
       if (repeats > 0) call_subroutine(*target, {}, true, repeats);

@@ -6,8 +6,8 @@
 #include <map>
 #include <optional>
 #include <set>
-#include <tuple>
 #include <string>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -18,7 +18,9 @@ namespace ncjoule::detail {
 
 // The values of one block's words after evaluation. Axis values are in program units.
 // Slot of a word letter in BlockValues: 'a'..'z', then '@' and '^' (polar radius, angle).
-constexpr int slot(char c) { return c == '@' ? 26 : c == '^' ? 27 : c - 'a'; }
+constexpr int slot(char c) {
+  return c == '@' ? 26 : c == '^' ? 27 : c - 'a';
+}
 
 struct BlockValues {
   std::array<std::optional<double>, 28> letter; // by slot()
@@ -36,9 +38,27 @@ struct BlockValues {
 };
 
 enum class Motion : int {
-  None = 800, Rapid = 0, Linear = 10, ArcCW = 20, ArcCCW = 30, SpindleSynced = 330,
-  RigidTap = 331, Probe = 382, Probe3 = 383, Probe4 = 384, Probe5 = 385, Threading = 760,
-  G73 = 730, G81 = 810, G82 = 820, G83 = 830, G85 = 850, G86 = 860, G89 = 890
+  None = 800,
+  Rapid = 0,
+  Linear = 10,
+  ArcCW = 20,
+  ArcCCW = 30,
+  SpindleSynced = 330,
+  RigidTap = 331,
+  Probe = 382,
+  Probe3 = 383,
+  Probe4 = 384,
+  Probe5 = 385,
+  Threading = 760,
+  G73 = 730,
+  G74 = 740,
+  G81 = 810,
+  G84 = 840,
+  G82 = 820,
+  G83 = 830,
+  G85 = 850,
+  G86 = 860,
+  G89 = 890
 };
 
 class Interpreter {
@@ -54,11 +74,11 @@ private:
   // --- control flow (interpreter.cpp) -------------------------------------------------------
   struct Frame {
     std::size_t return_pc = 0;
-    std::size_t start_pc = 0;     // first line of the body (for Fanuc repeats)
-    int repeats_left = 0;         // Fanuc M98 L / P repeats still to run
-    bool fanuc = false;           // M98/M97/G65 frame (returns with M99)
+    std::size_t start_pc = 0;                    // first line of the body (for Fanuc repeats)
+    int repeats_left = 0;                        // Fanuc M98 L / P repeats still to run
+    bool fanuc = false;                          // M98/M97/G65 frame (returns with M99)
     std::map<std::size_t, long> repeat_counters; // o-word repeat loops, by line
-    int call_line = 0;            // line of the outermost call
+    int call_line = 0;                           // line of the outermost call
   };
   void handle_o_word(const Block& b);
   std::optional<std::size_t> find_next(const std::string& label, std::size_t after,
@@ -91,6 +111,25 @@ private:
   // --- canned cycles (canned_cycles.cpp) -----------------------------------------------------
   void canned_cycle(Motion cycle, const BlockValues& v);
 
+  // --- words of several letters (keywords.cpp) and Sinumerik cycles (sinumerik_cycles.cpp) ----
+  struct SinumerikCycle {
+    std::string name;                        // "cycle81"
+    std::vector<std::optional<double>> args; // by position; empty arguments are nullopt
+    int line = 0;                            // where it was defined (MCALL) or called
+    int column = 0;
+  };
+  // Honours the block's multi-letter words (MCALL, CYCLE8x, TRANS/ATRANS, ROT/AROT, planner
+  // hints) and warns about the rest. Clears v's axis words when they were a frame's values,
+  // not a move. `call_now` receives a cycle to run after the block's motion.
+  void keywords(const Block& b, BlockValues& v, std::optional<SinumerikCycle>& call_now);
+  std::optional<SinumerikCycle> parse_cycle(const Keyword& k);
+  void sinumerik_cycle(const SinumerikCycle& c);
+  bool frame_active() const {
+    return frame_rotation_deg_ != 0 || frame_shift_.x != 0 || frame_shift_.y != 0 ||
+           frame_shift_.z != 0;
+  }
+  void rotate_arc_offsets(BlockValues& v) const;
+
   // --- output and diagnostics ----------------------------------------------------------------
   CanonCommand make(CanonKind kind) const;
   void emit(CanonCommand c);
@@ -119,9 +158,9 @@ private:
   bool seen_percent_ = false;
   std::vector<Frame> frames_;
   std::unordered_map<std::string, std::vector<std::pair<std::size_t, std::string>>> labels_;
-  std::unordered_map<long, std::size_t> program_numbers_; // Fanuc O-number -> line
+  std::unordered_map<long, std::size_t> program_numbers_;          // Fanuc O-number -> line
   std::optional<std::unordered_map<long, std::size_t>> n_numbers_; // Haas M97 targets
-  std::size_t loop_iterations_ = 0; // backward jumps of loops
+  std::size_t loop_iterations_ = 0;                                // backward jumps of loops
   std::size_t blocks_run_ = 0;
   std::set<std::tuple<int, int, std::string>> reported_; // diagnostics already given
   void report(Severity severity, int column, std::string message);
@@ -129,15 +168,15 @@ private:
 
   // Modal state.
   ModalState state_;
-  Pose pos_;                    // current position, program coordinates, mm
-  std::array<Pose, 10> g5x_{};  // work offsets 1..9 (mm)
+  Pose pos_;                   // current position, program coordinates, mm
+  std::array<Pose, 10> g5x_{}; // work offsets 1..9 (mm)
   int g5x_index_ = 1;
-  Pose g92_;                    // G92 offsets (mm)
-  double tool_offset_z_ = 0;    // active tool length offset (mm)
+  Pose g92_;                 // G92 offsets (mm)
+  double tool_offset_z_ = 0; // active tool length offset (mm)
   Motion motion_ = Motion::Rapid;
-  bool incremental_ = false;     // G91
-  bool arc_incremental_ = true;  // G91.1
-  bool retract_to_r_ = true;     // G99
+  bool incremental_ = false;    // G91
+  bool arc_incremental_ = true; // G91.1
+  bool retract_to_r_ = true;    // G99
   int cutter_comp_ = 40;
   int selected_tool_ = 0;
   // Sticky canned-cycle values (program units).
@@ -148,6 +187,12 @@ private:
   // is approached at it, and under G91 R is measured from it.
   double cycle_initial_height_ = 0;
   bool have_cycle_initial_height_ = false;
+  // Sinumerik: the cycle MCALL made modal, and the programmable frame (TRANS/ATRANS shift,
+  // ROT/AROT rotation about Z), applied to programmed positions as rotate, then shift.
+  std::optional<SinumerikCycle> modal_cycle_;
+  Pose frame_shift_;
+  double frame_rotation_deg_ = 0;
+  bool rigid_tapping_ = false; // M29 given (Fanuc, Haas): G84/G74 are synchronised
   int current_line_ = 0;
   int current_call_line_ = 0;
   std::size_t command_count_ = 0;

@@ -7,28 +7,67 @@
 namespace ncjoule::detail {
 namespace {
 
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-bool is_letter(char c) { return c >= 'a' && c <= 'z'; }
+bool is_digit(char c) {
+  return c >= '0' && c <= '9';
+}
+bool is_letter(char c) {
+  return c >= 'a' && c <= 'z';
+}
 // ASCII only, like std::tolower in the "C" locale, without its per-character library call: this
 // runs on every byte of the program.
-char to_lower(char c) { return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c; }
+char to_lower(char c) {
+  return c >= 'A' && c <= 'Z' ? char(c - 'A' + 'a') : c;
+}
 
 // Unary functions that may stand where a value is expected (LinuxCNC), e.g. "x abs[#1]".
-constexpr const char* kFunctions[] = {"abs", "acos", "asin", "atan", "cos",   "exp", "fix",
-                                      "fup", "ln",   "round", "sin", "sqrt", "tan", "exists"};
+constexpr const char* kFunctions[] = {"abs", "acos", "asin",  "atan", "cos",  "exp", "fix",
+                                      "fup", "ln",   "round", "sin",  "sqrt", "tan", "exists"};
 
 std::size_t bracket_length(std::string_view t, std::size_t pos) {
   // t[pos] == '['; returns the length up to and including the matching ']', or 0.
   int depth = 0;
   for (std::size_t i = pos; i < t.size(); ++i) {
-    if (t[i] == '[') ++depth;
-    else if (t[i] == ']' && --depth == 0) return i - pos + 1;
+    if (t[i] == '[')
+      ++depth;
+    else if (t[i] == ']' && --depth == 0)
+      return i - pos + 1;
   }
   return 0;
 }
 
 void add_error(Block& b, int column, std::string message) {
   b.errors.push_back(Diagnostic{Severity::Error, {}, 0, column, std::move(message)});
+}
+void add_warning(Block& b, int column, std::string message) {
+  b.warnings.push_back(Diagnostic{Severity::Warning, {}, 0, column, std::move(message)});
+}
+
+bool is_name_char(char c) {
+  return is_letter(c) || is_digit(c) || c == '_';
+}
+
+// Sinumerik calls take their arguments in parentheses: "CYCLE81(10,0,2,-5)", "MSG("text")".
+// A '(' right after a name that begins with two letters opens such a list, not a comment.
+bool opens_argument_list(std::string_view line, std::size_t paren) {
+  std::size_t k = paren;
+  while (k > 0 && (line[k - 1] == ' ' || line[k - 1] == '\t'))
+    --k;
+  std::size_t start = k;
+  while (start > 0 && is_name_char(to_lower(line[start - 1])))
+    --start;
+  return k - start >= 2 && is_letter(to_lower(line[start])) && is_letter(to_lower(line[start + 1]));
+}
+
+// Length of the ( ... ) list at t[pos], including both parentheses, or 0 when not closed.
+std::size_t paren_length(std::string_view t, std::size_t pos) {
+  int depth = 0;
+  for (std::size_t i = pos; i < t.size(); ++i) {
+    if (t[i] == '(')
+      ++depth;
+    else if (t[i] == ')' && --depth == 0)
+      return i - pos + 1;
+  }
+  return 0;
 }
 
 } // namespace
@@ -39,6 +78,9 @@ void Block::clear() {
   words.clear();
   assignments.clear();
   comments.clear();
+  keywords.clear();
+  warnings.clear();
+  percent_name = {};
   block_delete = percent = dollar = has_o = false;
   o_label.clear();
   o_keyword.clear();
@@ -57,10 +99,12 @@ std::size_t value_length(std::string_view t, std::size_t pos) {
   if (is_digit(c) || c == '.') {
     std::size_t i = pos;
     bool digits = false;
-    while (i < t.size() && is_digit(t[i])) ++i, digits = true;
+    while (i < t.size() && is_digit(t[i]))
+      ++i, digits = true;
     if (i < t.size() && t[i] == '.') {
       ++i;
-      while (i < t.size() && is_digit(t[i])) ++i, digits = true;
+      while (i < t.size() && is_digit(t[i]))
+        ++i, digits = true;
     }
     return digits ? i - pos : 0;
   }
@@ -98,7 +142,8 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
   b.clear();
   std::size_t i = 0;
   const std::size_t n = line.size();
-  while (i < n && (line[i] == ' ' || line[i] == '\t')) ++i;
+  while (i < n && (line[i] == ' ' || line[i] == '\t'))
+    ++i;
   if (i < n && line[i] == '/') {
     b.block_delete = true;
     ++i;
@@ -114,13 +159,26 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     const char c = line[i];
     if (c == ' ' || c == '\t') {
       ++i;
+    } else if (c == '(' && dialect.paren_argument_lists && opens_argument_list(line, i)) {
+      // Copied as code (blanks inside dropped) for the word loop to read as arguments.
+      std::size_t len = paren_length(line, i);
+      if (!len) len = n - i;
+      for (std::size_t k = i; k < i + len; ++k) {
+        if (line[k] == ' ' || line[k] == '\t') continue;
+        b.code.push_back(to_lower(line[k]));
+        b.columns.push_back(int(k) + 1);
+      }
+      i += len;
+    } else if (c == '*' && dialect.star_block_end) {
+      break; // Heidenhain ISO: the end of the block
     } else if (c == '(' && dialect.paren_comments) {
       std::size_t close = line.find(')', i + 1);
       if (dialect.nested_paren_comments) {
         int depth = 0;
         close = std::string_view::npos;
         for (std::size_t k = i; k < n; ++k) {
-          if (line[k] == '(') ++depth;
+          if (line[k] == '(')
+            ++depth;
           else if (line[k] == ')' && --depth == 0) {
             close = k;
             break;
@@ -128,7 +186,10 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
         }
       }
       if (close == std::string_view::npos) {
-        add_error(b, int(i) + 1, "comment is not closed: expected ')' before the end of the line");
+        // What the controller makes of it varies; the code before it is kept.
+        add_warning(b, int(i) + 1,
+                    "comment is not closed: expected ')' before the end of the line; taken as "
+                    "a comment to the end of the line");
         b.comments.push_back({line.substr(i + 1), int(i) + 1});
         break;
       }
@@ -137,6 +198,11 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     } else if (c == ';' && dialect.semicolon_comments) {
       b.comments.push_back({line.substr(i + 1), int(i) + 1});
       break;
+    } else if (c == ';') {
+      // Fanuc family: ';' is the end-of-block character (EOB) of tape format.
+      if (line.find_first_not_of(" \t", i + 1) != std::string_view::npos)
+        add_warning(b, int(i) + 1, "text after ';' (end of block) is ignored");
+      break;
     } else {
       b.code.push_back(to_lower(c));
       b.columns.push_back(int(i) + 1);
@@ -144,20 +210,24 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     }
   }
   const std::string_view code = b.code;
-  if (code == "%") {
-    b.percent = true;
-    return;
-  }
   std::size_t p = 0;
   // N number first: skipped (it is a label, not a command).
   auto skip_n = [&] {
     if (p < code.size() && code[p] == 'n') {
       std::size_t q = p + 1;
-      while (q < code.size() && (is_digit(code[q]) || code[q] == '.')) ++q;
+      while (q < code.size() && (is_digit(code[q]) || code[q] == '.'))
+        ++q;
       if (q > p + 1) p = q;
     }
   };
   skip_n();
+  if (p < code.size() && code[p] == '%') {
+    // A '%' tape delimiter, or a program name line: "%prog1" (UCCNC), "%PM" (Philips),
+    // "%NAME G71" (Heidenhain ISO, where G70/G71 give the units).
+    b.percent = true;
+    b.percent_name = code.substr(p + 1);
+    return;
+  }
   if (p < code.size() && code[p] == 'o' && p + 1 < code.size() &&
       (code[p + 1] == '<' || is_digit(code[p + 1]) || code[p + 1] == '[')) {
     b.has_o = true;
@@ -180,30 +250,69 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       b.o_label = std::string(code.substr(q, len));
       q += len;
     } else {
-      while (q < code.size() && is_digit(code[q])) ++q;
+      while (q < code.size() && is_digit(code[q]))
+        ++q;
       // Numbers are labels: o0100 and o100 are the same.
       std::string digits(code.substr(p + 1, q - p - 1));
       std::size_t nz = digits.find_first_not_of('0');
       b.o_label = nz == std::string::npos ? "0" : digits.substr(nz);
     }
     std::size_t k = q;
-    while (k < code.size() && is_letter(code[k])) ++k;
+    while (k < code.size() && is_letter(code[k]))
+      ++k;
     b.o_keyword = std::string(code.substr(q, k - q));
     b.o_args = code.substr(k);
     return;
   }
+  // Bytes p and p + 1 of code were next to each other in the source (no blank or comment).
+  auto adjacent = [&](std::size_t q) { return b.columns[q + 1] == b.columns[q] + 1; };
   while (p < code.size()) {
     const char c = code[p];
-    if (is_letter(c) || c == '@' || c == '^') {
-      std::size_t len = value_length(code, p + 1);
-      if (len == 0) {
-        add_error(b, b.columns[p],
-                  std::string("expected a number or [expression] after word '") +
-                      char(std::toupper(c)) + "'");
-        return;
+    if (is_letter(c) && p + 1 < code.size() && is_letter(code[p + 1]) && adjacent(p) &&
+        value_length(code, p + 1) == 0) {
+      // A word of several letters: MCALL, TRANS, CYCLE81(...), RPL=45, GOTO ...
+      std::size_t q = p + 1;
+      while (q + 1 < code.size() && is_name_char(code[q + 1]) && adjacent(q))
+        ++q;
+      ++q;
+      Keyword k{code.substr(p, q - p), {}, false, b.columns[p]};
+      if (q < code.size() && code[q] == '(') {
+        std::size_t len = paren_length(code, q);
+        if (!len) len = code.size() - q;
+        k.has_parens = true;
+        k.args = code.substr(q + 1, len >= 2 && code[q + len - 1] == ')' ? len - 2 : len - 1);
+        q += len;
+      } else if (q < code.size() && code[q] == '=') {
+        std::size_t len = value_length(code, q + 1);
+        k.args = code.substr(q + 1, len);
+        q += 1 + len;
       }
-      b.words.push_back({c, b.columns[p], code.substr(p + 1, len)});
-      p += 1 + len;
+      b.keywords.push_back(k);
+      p = q;
+    } else if (is_letter(c) || c == '@' || c == '^') {
+      std::size_t at = p + 1;
+      if (at < code.size() && code[at] == '=' && is_letter(c)) ++at; // Sinumerik "X=10"
+      std::size_t len = value_length(code, at);
+      if (len == 0) {
+        add_warning(b, b.columns[p],
+                    std::string("word '") + char(std::toupper(c)) +
+                        "' has no number after it: ignored (the rest of the block still runs)");
+        ++p;
+        continue;
+      }
+      std::size_t next = at + len;
+      if (next < code.size() && code[next] == '=') {
+        // "R1=5" (Sinumerik R parameters) and the like: an assignment this interpreter does
+        // not keep.
+        std::size_t vlen = value_length(code, next + 1);
+        add_warning(b, b.columns[p],
+                    "assignment '" + std::string(code.substr(p, next + 1 + vlen - p)) +
+                        "' is not supported: ignored");
+        p = next + 1 + vlen;
+        continue;
+      }
+      b.words.push_back({c, b.columns[p], code.substr(at, len)});
+      p = next;
     } else if (c == '#') {
       // Parameter assignment: #target=value
       std::size_t t0 = p + 1, t1 = t0;
@@ -227,8 +336,15 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       b.assignments.push_back({code.substr(t0, t1 - t0), code.substr(t1 + 1, len), b.columns[p]});
       p = t1 + 1 + len;
     } else {
-      add_error(b, b.columns[p], std::string("unexpected character '") + c + "'");
-      return;
+      // Characters no controller family here gives a meaning to: skipped with a warning.
+      std::size_t q = p + 1;
+      while (q < code.size() && !is_letter(code[q]) && code[q] != '#' && code[q] != '@' &&
+             code[q] != '^')
+        ++q;
+      add_warning(b, b.columns[p],
+                  "unexpected '" + std::string(code.substr(p, q - p)) +
+                      "': ignored (the rest of the block still runs)");
+      p = q;
     }
   }
 }

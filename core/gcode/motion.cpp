@@ -43,6 +43,17 @@ Pose Interpreter::target_from_words(const BlockValues& v, bool machine_coordinat
     end.y = r * std::sin(a * std::numbers::pi / 180.0);
   }
   const Pose off = offset_total();
+  // Under a Sinumerik programmable frame the words are in the frame's coordinates: start from
+  // the current point seen in the frame, and map the result back.
+  const bool framed = !machine_coordinates && frame_active();
+  const double t = frame_rotation_deg_ * std::numbers::pi / 180.0;
+  if (framed) {
+    const double dx = end.x - frame_shift_.x, dy = end.y - frame_shift_.y;
+    end.x = dx * std::cos(t) + dy * std::sin(t);
+    end.y = -dx * std::sin(t) + dy * std::cos(t);
+    end.z -= frame_shift_.z;
+  }
+  const Pose here = end;
   for (int i = 0; i < 6; ++i) {
     const auto value = v[kAxisLetters[i]];
     if (!value) continue;
@@ -52,9 +63,15 @@ Pose Interpreter::target_from_words(const BlockValues& v, bool machine_coordinat
       target -= axis(off, i);
       if (i == 2) target -= tool_offset_z_;
     } else if (incremental_) {
-      target += axis(pos_, i);
+      target += axis(here, i);
     }
     *axis_ref(end, i) = target;
+  }
+  if (framed) {
+    const double fx = end.x, fy = end.y;
+    end.x = fx * std::cos(t) - fy * std::sin(t) + frame_shift_.x;
+    end.y = fx * std::sin(t) + fy * std::cos(t) + frame_shift_.y;
+    end.z += frame_shift_.z;
   }
   return end;
 }
@@ -121,7 +138,8 @@ void Interpreter::probe(const Pose& end) {
   // Without a real probe, the probe is taken to reach its target without tripping, as rs274
   // reports it: #5061-#5066 hold the target, #5070 is 0.
   const double p[6] = {end.x / unit(), end.y / unit(), end.z / unit(), end.a, end.b, end.c};
-  for (int i = 0; i < 6; ++i) params_.at(5061 + i) = p[i];
+  for (int i = 0; i < 6; ++i)
+    params_.at(5061 + i) = p[i];
   params_.at(5070) = 0;
 }
 
@@ -193,8 +211,8 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
   } else {
     const bool have_offsets = v.has(fo) || v.has(so);
     if (!have_offsets) {
-      error(col, std::string("arc needs ") + char(std::toupper(fo)) + "/" +
-                     char(std::toupper(so)) + " (centre) or R (radius) words in this plane");
+      error(col, std::string("arc needs ") + char(std::toupper(fo)) + "/" + char(std::toupper(so)) +
+                     " (centre) or R (radius) words in this plane");
       return;
     }
     const double of = v[fo].value_or(0) * u, os = v[so].value_or(0) * u;
@@ -278,11 +296,14 @@ void Interpreter::set_axis_offsets(const BlockValues& v) {
     g92_ = Pose{};
     if (code == 921) params_.at(param::kG92Enabled) = 0;
   } else if (code == 923) {
-    for (int i = 0; i < 6; ++i) *axis_ref(g92_, i) = params_.at(param::kG92 + i);
+    for (int i = 0; i < 6; ++i)
+      *axis_ref(g92_, i) = params_.at(param::kG92 + i);
   }
   if (code != 922)
-    for (int i = 0; i < 6; ++i) params_.at(param::kG92 + i) = axis(g92_, i);
-  for (int i = 0; i < 6; ++i) *axis_ref(pos_, i) += axis(old, i) - axis(g92_, i);
+    for (int i = 0; i < 6; ++i)
+      params_.at(param::kG92 + i) = axis(g92_, i);
+  for (int i = 0; i < 6; ++i)
+    *axis_ref(pos_, i) += axis(old, i) - axis(g92_, i);
   CanonCommand c = make(CanonKind::AxisOffset);
   c.end = g92_;
   emit(std::move(c));
@@ -315,9 +336,11 @@ void Interpreter::set_coordinate_data(const BlockValues& v) {
     }
   }
   if (p == g5x_index_)
-    for (int i = 0; i < 6; ++i) *axis_ref(pos_, i) += axis(g5x_[p], i) - axis(neu, i);
+    for (int i = 0; i < 6; ++i)
+      *axis_ref(pos_, i) += axis(g5x_[p], i) - axis(neu, i);
   g5x_[p] = neu;
-  for (int i = 0; i < 6; ++i) params_.at(param::kG54 + 20 * (p - 1) + i) = axis(neu, i);
+  for (int i = 0; i < 6; ++i)
+    params_.at(param::kG54 + 20 * (p - 1) + i) = axis(neu, i);
   if (p == g5x_index_) {
     CanonCommand c = make(CanonKind::WorkOffset);
     c.value = p;

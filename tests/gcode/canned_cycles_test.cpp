@@ -130,10 +130,16 @@ TEST_CASE("canned cycles in inches and in the XZ plane") {
   CHECK(moves(zx) == expected);
 }
 
-TEST_CASE("canned cycle errors: missing R, R below Z, peck without Q") {
-  CHECK(errors(run("G21 G0 Z5\nG81 X1 Z-1 F100\nM2\n")) == 1);
+TEST_CASE("canned cycle errors: R below Z, peck without Q; a missing R only warns") {
+  // A post that drops R (FreeCAD's comparams): the cycle starts where the tool is.
+  const Toolpath nor = run("G21 G0 Z5\nG81 X1 Z-1 F100\nM2\n");
+  CHECK(errors(nor) == 0);
+  CHECK(with_severity(nor, Severity::Warning).size() == 1);
+  REQUIRE(of_kind(nor, CanonKind::Feed).size() == 1);
+  CHECK(of_kind(nor, CanonKind::Feed)[0].start.z == doctest::Approx(5));
   CHECK(errors(run("G21 G0 Z5\nG81 X1 Z2 R1 F100\nM2\n")) == 1);
   const Toolpath noq = run("G21 G0 Z5\nG83 X1 Z-1 R1 F100\nM2\n");
-  CHECK(errors(noq) == 1);
+  CHECK(errors(noq) == 0); // a warning: the hole is drilled in one go
+  CHECK(with_severity(noq, Severity::Warning).size() == 1);
   CHECK(moves(noq).back() == T(1, 0, 1)); // drilled in one go
 }

@@ -23,20 +23,25 @@ TEST_CASE("unknown G and M codes warn with file, line and column, the motion sti
   CHECK(p.result.completed);
 }
 
-TEST_CASE("bad words and unclosed comments are errors, the block is skipped, the run goes on") {
+TEST_CASE("bad G numbers are errors and skip the block; stray words and characters only warn") {
   const Toolpath p = run("G21\nG0 X1 Y\nG0 X2 (open comment\nG0 X3 &\nG1.55 X4\nG0 X5\nM2\n");
   const auto e = with_severity(p, Severity::Error);
-  REQUIRE(e.size() == 4);
-  CHECK(e[0].line == 2);
-  CHECK(e[0].column == 7);
-  CHECK(e[1].line == 3);
-  CHECK(e[1].column == 7);
-  CHECK(e[1].message.find("')'") != std::string::npos);
-  CHECK(e[2].line == 4);
-  CHECK(e[2].column == 7);
-  CHECK(e[3].line == 5);
-  CHECK(e[3].column == 1);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].line == 5);
+  CHECK(e[0].column == 1);
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 3);
+  CHECK(w[0].line == 2);
+  CHECK(w[0].column == 7);
+  CHECK(w[1].line == 3);
+  CHECK(w[1].column == 7);
+  CHECK(w[1].message.find("')'") != std::string::npos);
+  CHECK(w[2].line == 4);
+  CHECK(w[2].column == 7);
   CHECK(moves(p) == std::vector<std::string>{
+                        "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+                        "STRAIGHT_TRAVERSE(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+                        "STRAIGHT_TRAVERSE(3.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
                         "STRAIGHT_TRAVERSE(5.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"});
 }
 
@@ -88,13 +93,23 @@ TEST_CASE("dialect detection") {
   CHECK(p.result.dialect.name == "fanuc");
   CHECK(of_kind(p, CanonKind::Dwell)[0].value == doctest::Approx(2.0));
   CHECK(find_dialect("Sinumerik")->name == "siemens");
-  CHECK_FALSE(find_dialect("heidenhain").has_value());
+  CHECK(find_dialect("heidenhain")->name == "heidenhain");
+  CHECK(find_dialect("Marlin")->name == "reprap");
+  CHECK_FALSE(find_dialect("okuma").has_value());
+  CHECK(detect("; Sinumerik 840D\nG17 G90\nMCALL CYCLE81(10,0,2,-5)\n") == "siemens");
+  CHECK(detect("%PART G71 *\nN10 G00 X+0 *\n") == "heidenhain");
+  CHECK(detect("(Post Processor: PathScripts.post.marlin_post.py)\nG21\n") == "reprap");
+  CHECK(detect("(POST PROCESSOR: PATHSCRIPTS.POST.FANUC_POST)\nG21\n") == "fanuc");
 }
 
 TEST_CASE(
     "comment syntax is dialect data: the semicolon ends the block on Fanuc, comments on LinuxCNC") {
   CHECK(errors(run("G21 G0 X1 ; move\nM2\n", "linuxcnc")) == 0);
-  CHECK(errors(run("G21 G0 X1 ; move\nM30\n", "fanuc")) == 1);
+  // Fanuc: ';' is the end of block; text after it is warned about and not run.
+  const Toolpath f = run("G21 G0 X1 ; move\nG0 X2;\nM30\n", "fanuc");
+  CHECK(errors(f) == 0);
+  CHECK(with_severity(f, Severity::Warning).size() == 1);
+  CHECK(moves(f).size() == 2);
   const Toolpath msg = run("(MSG, tool change next)\nM2\n");
   const auto m = of_kind(msg, CanonKind::Message);
   REQUIRE(m.size() == 1);

@@ -29,7 +29,8 @@ TEST_CASE("source lines keep their exact bytes and line endings") {
   CHECK(f.lines[3].eol_length == 0);
   // Re-assembling the lines gives the file back byte for byte.
   std::string back;
-  for (const LineSpan& l : f.lines) back += text.substr(l.begin, l.length + l.eol_length);
+  for (const LineSpan& l : f.lines)
+    back += text.substr(l.begin, l.length + l.eol_length);
   CHECK(back == text);
 }
 
@@ -51,7 +52,7 @@ TEST_CASE("block delete, percent lines and grbl settings") {
   CHECK(lex("/G0 X1").block_delete);
   CHECK(lex("  %  ").percent);
   CHECK(lex("$110=500", "grbl").dollar);
-  CHECK_FALSE(lex("$110=500").errors.empty()); // not in LinuxCNC
+  CHECK_FALSE(lex("$110=500").warnings.empty()); // not in LinuxCNC: warned about, skipped
 }
 
 TEST_CASE("expressions, parameters and assignments") {
@@ -81,16 +82,45 @@ TEST_CASE("O-words and Fanuc program numbers") {
   CHECK(header.o_keyword.empty());
 }
 
-TEST_CASE("lexical errors carry the column") {
+TEST_CASE("lexical problems carry the column and cost only the word") {
   Block b = lex("G1 X1 Y");
-  REQUIRE(b.errors.size() == 1);
-  CHECK(b.errors[0].column == 7);
+  CHECK(b.errors.empty());
+  REQUIRE(b.warnings.size() == 1);
+  CHECK(b.warnings[0].column == 7);
+  CHECK(b.words.size() == 2);
   Block c = lex("G1 X1 (open");
-  REQUIRE(c.errors.size() == 1);
-  CHECK(c.errors[0].column == 7);
+  REQUIRE(c.warnings.size() == 1);
+  CHECK(c.warnings[0].column == 7);
   Block d = lex("G1 X1 @");
-  REQUIRE(d.errors.size() == 1);
-  CHECK(d.errors[0].message.find('@') != std::string::npos);
+  REQUIRE(d.warnings.size() == 1);
+  CHECK(d.warnings[0].message.find('@') != std::string::npos);
+}
+
+TEST_CASE("words of several letters, Sinumerik argument lists and X=value") {
+  Block b = lex("N10 MCALL CYCLE81(10, 0, 2, -5, ) ; drill", "siemens");
+  CHECK(b.errors.empty());
+  CHECK(b.warnings.empty());
+  REQUIRE(b.keywords.size() == 2);
+  CHECK(b.keywords[0].name == "mcall");
+  CHECK(b.keywords[0].column == 5);
+  CHECK(b.keywords[1].name == "cycle81");
+  CHECK(b.keywords[1].has_parens);
+  CHECK(b.keywords[1].args == "10,0,2,-5,");
+  REQUIRE(b.comments.size() == 1);
+  Block r = lex("ROT RPL=45 G0 X=10.5", "siemens");
+  REQUIRE(r.keywords.size() == 2);
+  CHECK(r.keywords[1].name == "rpl");
+  CHECK(r.keywords[1].args == "45");
+  REQUIRE(r.words.size() == 2);
+  CHECK(r.words[1].value == "10.5");
+  // Elsewhere a '(' after a name is still a comment, and functions stay values.
+  Block l = lex("G0 X1 TOOL(x)");
+  REQUIRE(l.keywords.size() == 1);
+  CHECK(l.keywords[0].name == "tool");
+  CHECK(l.comments.size() == 1);
+  Block f = lex("G0 Xsin[30] Ycos[0]");
+  CHECK(f.keywords.empty());
+  CHECK(f.words.size() == 3);
 }
 
 TEST_CASE("Fanuc dialect: a semicolon is not a comment, parentheses are") {

@@ -71,23 +71,32 @@ std::string format_diagnostic(const Diagnostic& d);
 // ---------------------------------------------------------------------------------------------
 
 struct Dialect {
-  std::string name;               // "linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens"
+  std::string name; // "linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens", "heidenhain",
+                    // "reprap"
   bool paren_comments = true;     // ( ... )
   bool semicolon_comments = true; // ; to end of line
   bool nested_paren_comments = false;
-  bool dwell_p_in_ms = false;            // G4 P in milliseconds (Fanuc/Haas with integer P)
-  bool dwell_p_integer_is_ms = false;    // P without a decimal point is ms, with one is s
-  bool dwell_x_word = false;             // G4 X<seconds> accepted
-  bool decimal_point_optional_ms = false;// bare integers mean 1/1000 mm (Fanuc without G-code setting)
-  bool o_word_subroutines = false;       // LinuxCNC o<name> sub/call/if/while
-  bool fanuc_subprograms = false;        // M98 P.. L.. / M99 within one file
-  bool haas_local_subprograms = false;   // M97 P<N-number>
-  bool g65_macro_calls = false;          // G65 P<program> with arguments
-  bool dollar_lines = false;             // grbl's $ settings lines are ignored
-  bool upper_case_comments = false;      // annotate in upper case (Fanuc family)
-  bool retract_to_r_by_default = false;  // initial G98/G99 state
-  std::size_t max_line_length = 0;       // 0: no limit
-  std::string comment_open = "(";        // what the annotator writes
+  bool dwell_p_in_ms = false;         // G4 P in milliseconds (Fanuc/Haas with integer P)
+  bool dwell_p_integer_is_ms = false; // P without a decimal point is ms, with one is s
+  bool dwell_x_word = false;          // G4 X<seconds> accepted
+  bool decimal_point_optional_ms =
+      false;                       // bare integers mean 1/1000 mm (Fanuc without G-code setting)
+  bool o_word_subroutines = false; // LinuxCNC o<name> sub/call/if/while
+  bool fanuc_subprograms = false;  // M98 P.. L.. / M99 within one file
+  bool haas_local_subprograms = false;  // M97 P<N-number>
+  bool g65_macro_calls = false;         // G65 P<program> with arguments
+  bool dollar_lines = false;            // grbl's $ settings lines are ignored
+  bool upper_case_comments = false;     // annotate in upper case (Fanuc family)
+  bool retract_to_r_by_default = false; // initial G98/G99 state
+  std::size_t max_line_length = 0;      // 0: no limit
+  bool dwell_s_word = false;            // G4 S<seconds> accepted (Marlin, RepRapFirmware)
+  bool paren_argument_lists = false;    // NAME(args) is a call (Sinumerik CYCLE81(...)), not
+                                        // a comment
+  bool sinumerik_words = false;         // MCALL, CYCLE81..89, TRANS/ATRANS, ROT/AROT, ...
+  bool star_block_end = false;          // '*' ends a block (Heidenhain ISO)
+  bool arc_centre_absolute = false;     // I/J/K are the absolute arc centre (Heidenhain ISO)
+  bool g70_g71_units = false;           // G70 inch, G71 mm (Heidenhain ISO)
+  std::string comment_open = "(";       // what the annotator writes
   std::string comment_close = ")";
 };
 
@@ -116,30 +125,30 @@ enum class PathMode : std::uint8_t { ExactStop, ExactPath, Continuous }; // G61.
 // replaying the stream.
 struct ModalState {
   FeedMode feed_mode = FeedMode::UnitsPerMinute;
-  double feed = 0;       // F as programmed, converted to mm where it is a length:
-                         // mm/min (G94), 1/min (G93), mm/rev (G95)
+  double feed = 0; // F as programmed, converted to mm where it is a length:
+                   // mm/min (G94), 1/min (G93), mm/rev (G95)
   double spindle_rpm = 0;
   SpindleDir spindle = SpindleDir::Off;
   bool mist = false;
   bool flood = false;
-  int tool = 0;          // tool in the spindle
-  bool inch = false;     // program units at the time (for printing in program units)
+  int tool = 0;      // tool in the spindle
+  bool inch = false; // program units at the time (for printing in program units)
   PathMode path_mode = PathMode::Continuous;
   double path_tolerance = 0; // mm, G64 P; 0 = as fast as possible
   Plane plane = Plane::XY;
 };
 
 enum class CanonKind : std::uint8_t {
-  Traverse,        // G0, and the rapid parts of canned cycles, G28/G30, G53 G0
-  Feed,            // G1 and the feed parts of canned cycles
-  Arc,             // G2/G3, helices included
-  Probe,           // G38.x: timed as a feed
-  Dwell,           // value = seconds
-  SelectTool,      // value = tool number (T word)
-  ChangeTool,      // value = tool number (M6)
-  SetFeedRate,     // value = F (program units/min, as rs274 prints)
-  SetFeedMode,     // state.feed_mode
-  SpindleSpeed,    // value = rpm
+  Traverse,     // G0, and the rapid parts of canned cycles, G28/G30, G53 G0
+  Feed,         // G1 and the feed parts of canned cycles
+  Arc,          // G2/G3, helices included
+  Probe,        // G38.x: timed as a feed
+  Dwell,        // value = seconds
+  SelectTool,   // value = tool number (T word)
+  ChangeTool,   // value = tool number (M6)
+  SetFeedRate,  // value = F (program units/min, as rs274 prints)
+  SetFeedMode,  // state.feed_mode
+  SpindleSpeed, // value = rpm
   SpindleClockwise,
   SpindleCounterClockwise,
   SpindleStop,
@@ -147,18 +156,26 @@ enum class CanonKind : std::uint8_t {
   FloodOn,
   MistOff,
   FloodOff,
-  LengthUnits,     // state.inch
-  PlaneSelect,     // state.plane
-  PathControl,     // state.path_mode, state.path_tolerance
-  ToolLengthOffset,// end.z = offset (mm)
-  WorkOffset,      // value = index (1 = G54 ... 9 = G59.3), end = offset (mm)
-  AxisOffset,      // G92: end = offset (mm)
-  ProgramStop,     // M0
-  OptionalStop,    // M1
-  ProgramEnd,      // M2, M30
-  Message,         // text = (MSG,...)
-  Comment,         // text
-  PlannerHint,     // text = the code (e.g. "G187 P3"), value = its main number
+  LengthUnits,      // state.inch
+  PlaneSelect,      // state.plane
+  PathControl,      // state.path_mode, state.path_tolerance
+  ToolLengthOffset, // end.z = offset (mm)
+  WorkOffset,       // value = index (1 = G54 ... 9 = G59.3), end = offset (mm)
+  AxisOffset,       // G92: end = offset (mm)
+  ProgramStop,      // M0
+  OptionalStop,     // M1
+  ProgramEnd,       // M2, M30
+  Message,          // text = (MSG,...)
+  Comment,          // text
+  // A code that changes only how the controller blends, smooths or looks ahead, never the
+  // programmed path: text = the code and its words as written ("G187 P3 E0.01", "G103 P5",
+  // "G5.1 Q1", "G642", "CYCLE832(0.01,3)", "SOFT"), value = the code's number (187, 103, 5.1;
+  // 0 for Sinumerik words). The planner may use it to choose its corner tolerance and look-ahead
+  // (Haas G187: P1 rough, P2 medium, P3 finish, E the corner tolerance; G103 P: blocks of
+  // look-ahead, P0 = the full buffer; Fanuc G5.1 Q1/Q0: AI contour control on/off; Sinumerik
+  // G64x/CYCLE832/SOFT: blending and jerk limitation); it may also ignore it, as the default
+  // planner does, since the programmed path and feed rate stay the same.
+  PlannerHint,
 };
 
 struct CanonCommand {
@@ -183,10 +200,10 @@ using CanonSink = std::function<void(const CanonCommand&)>;
 
 // Arc geometry helpers shared by the printer, the planner and removal.
 struct ArcGeometry {
-  double radius = 0;      // mm, in the plane
-  double sweep = 0;       // radians, signed (+ counter-clockwise in the plane's frame)
-  double axial = 0;       // mm, helix rise along the plane's normal
-  double length = 0;      // mm, helix length sqrt((r*theta)^2 + h^2)
+  double radius = 0; // mm, in the plane
+  double sweep = 0;  // radians, signed (+ counter-clockwise in the plane's frame)
+  double axial = 0;  // mm, helix rise along the plane's normal
+  double length = 0; // mm, helix length sqrt((r*theta)^2 + h^2)
 };
 ArcGeometry arc_geometry(const CanonCommand& arc);
 // Point on a move (line or arc) at fraction u in [0, 1] of its parameter.
@@ -200,8 +217,8 @@ double move_length(const CanonCommand& move);
 
 struct ToolEntry {
   int number = 0;
-  double z_offset = 0;  // mm, tool length
-  double diameter = 0;  // mm
+  double z_offset = 0; // mm, tool length
+  double diameter = 0; // mm
 };
 using ToolTable = std::map<int, ToolEntry>;
 // Reads a LinuxCNC .tbl file ("T1 P1 Z1.5 D0.25 ;comment"); values in the given units.
@@ -215,9 +232,9 @@ ToolTable parse_tool_table(const SourceFile& file, bool inch, std::vector<Diagno
 struct InterpreterOptions {
   std::optional<Dialect> dialect; // empty: detect from the text
   ToolTable tools;
-  bool block_delete = false;      // honour '/' (skip those blocks)
-  bool optional_stop = true;      // M1 stops (only recorded; time counts zero)
-  std::size_t max_commands = 0;   // 0: no limit (guards runaway loops)
+  bool block_delete = false;                   // honour '/' (skip those blocks)
+  bool optional_stop = true;                   // M1 stops (only recorded; time counts zero)
+  std::size_t max_commands = 0;                // 0: no limit (guards runaway loops)
   std::size_t max_loop_iterations = 1'000'000; // backward jumps of loops (0: no limit)
 };
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs the removal benchmark (dexel vs voxel on the same program and grid).
-# Usage: bench/removal.sh [grid_mm] [stock_height_mm]   (build directory: $BUILD_DIR or build-bench)
+# Usage: bench/removal.sh [grid_mm=0.25] [stock_height_mm=20]   (build directory: $BUILD_DIR or
+# build-bench). Prints steps/s and columns/s for both engines and the dexel / voxel ratio.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${BUILD_DIR:-$root/build-bench}"

@@ -1,7 +1,7 @@
 // The pipeline: interpret, plan, remove material, integrate power, summarise per line.
+#include "ncjoule/log.hpp"
 #include <chrono>
 #include <exception>
-#include "ncjoule/log.hpp"
 
 #include "line_summary.hpp"
 
@@ -30,10 +30,12 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.dialect = e.toolpath.result.dialect;
   e.diagnostics = e.toolpath.result.diagnostics;
   logger().info("interpret: {} blocks, {} commands in {:.3f} s", e.toolpath.result.blocks,
-               e.toolpath.commands.size(), seconds_since(t));
+                e.toolpath.commands.size(), seconds_since(t));
 
   // Tools come from the program's header comments; removal needs every tool it uses.
   e.tools = parse_tool_comments(source, e.diagnostics);
+  for (const auto& [number, tool] : options.tools)
+    e.tools[number] = tool;
   std::optional<StockSpec> stock;
   if (options.simulate_removal) {
     std::vector<Diagnostic> missing =

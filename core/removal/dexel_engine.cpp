@@ -29,6 +29,12 @@ public:
       count_[c] = std::uint16_t(std::min<std::uint32_t>(first[c + 1] - first[c], 65535));
       top_[c] = count_[c] ? intervals_[first_[c] + count_[c] - 1].hi : kNoMaterial;
     }
+    tile_top_.assign(tile_count(grid_), kNoMaterial);
+    for (int j = 0; j < grid_.ny; ++j)
+      for (int i = 0; i < grid_.nx; ++i) {
+        double& t = tile_top_[tile_of(grid_, i, j)];
+        t = std::max(t, top_[std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i)]);
+      }
   }
 
   EngineKind kind() const override { return EngineKind::Dexel; }
@@ -37,7 +43,8 @@ public:
 
   std::size_t memory_bytes() const override {
     return intervals_.capacity() * sizeof(ZInterval) + first_.capacity() * sizeof(std::uint32_t) +
-           count_.capacity() * sizeof(std::uint16_t) + top_.capacity() * sizeof(double);
+           count_.capacity() * sizeof(std::uint16_t) +
+           (top_.capacity() + tile_top_.capacity()) * sizeof(double);
   }
 
   double material_volume_mm3() const override {
@@ -52,7 +59,8 @@ public:
     const SweptStep step(tool, from, to);
     const double zlow = step.lowest_tip_z();
     const TileResult r = for_each_footprint_column(
-        grid_, step, kParallelMinColumns,
+        grid_, step, kParallelMinColumns, scratch_,
+        [&](std::size_t tile) { return tile_top_[tile] <= zlow; },
         [&](std::size_t c, int, int, double x, double y, TileResult& acc) {
           // The tool bottom never goes below the lowest tip: columns already at or below it
           // need no envelope.
@@ -61,6 +69,9 @@ public:
           const double e = step.envelope_at(x, y);
           if (e >= top_[c]) return;
           acc.volume_mm3 += clip_column(c, e);
+        },
+        [&](std::size_t tile, const TileResult& acc) {
+          if (acc.volume_mm3 > 0) refresh_tile_top(tile);
         });
     const double volume = r.volume_mm3 * grid_.dx * grid_.dy;
     ++stats_.steps;
@@ -70,6 +81,22 @@ public:
   }
 
 private:
+  // The tile's highest column top, after its columns were cut.
+  void refresh_tile_top(std::size_t tile) {
+    const int across = tiles_across(grid_);
+    const int ia = int(tile % std::size_t(across)) * kTileColumns;
+    const int ja = int(tile / std::size_t(across)) * kTileColumns;
+    const int ib = std::min(grid_.nx, ia + kTileColumns),
+              jb = std::min(grid_.ny, ja + kTileColumns);
+    double t = kNoMaterial;
+    for (int j = ja; j < jb; ++j) {
+      const double* row = top_.data() + std::size_t(j) * std::size_t(grid_.nx);
+      for (int i = ia; i < ib; ++i)
+        t = std::max(t, row[i]);
+    }
+    tile_top_[tile] = t;
+  }
+
   // Removes the material of column c above z; returns the length removed.
   double clip_column(std::size_t c, double z) {
     double removed = 0;
@@ -96,7 +123,9 @@ private:
   std::vector<ZInterval> intervals_;
   std::vector<std::uint32_t> first_;
   std::vector<std::uint16_t> count_;
-  std::vector<double> top_; // top of each column's material: most steps stop at this test
+  std::vector<double> top_;      // top of each column's material: most columns stop here
+  std::vector<double> tile_top_; // highest top_ in each tile: whole tiles stop here
+  std::vector<TileResult> scratch_;
   EngineStats stats_;
 };
 

@@ -40,6 +40,21 @@ std::map<int, Tool> tools_in_use(const std::vector<CanonCommand>& commands,
   return used.empty() ? tools : used;
 }
 
+// The Z levels of the cutting moves' end points (flat floors, plunge bottoms), for the voxel
+// engine's layer boundaries.
+std::vector<double> cutting_levels(const std::vector<CanonCommand>& commands,
+                                   const std::map<int, Tool>& tools) {
+  std::vector<double> levels;
+  for (const CanonCommand& c : commands)
+    if ((c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) && tools.count(c.state.tool)) {
+      levels.push_back(c.start.z);
+      levels.push_back(c.end.z);
+    }
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  return levels;
+}
+
 // Sample points of a move; when the planner gave none, the move's own geometry at a fixed
 // number of points, evenly spread in time.
 std::vector<MotionSample> samples_of(const TimedCommand& tc, const CanonCommand& cmd,
@@ -107,8 +122,8 @@ RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const 
     }
     stock = make_box_stock(*box, format_box(*box) +
                                      " (default: bounding box of the cutting moves, XY widened "
-                                     "by the tool radius, Z from the lowest cut to the highest "
-                                     "Z a cutting move starts from)");
+                                     "by the tool radius, Z from the lowest cut up to the "
+                                     "highest level at which a cutting move travels in XY)");
     break;
   }
   }
@@ -122,11 +137,16 @@ RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const 
   // The grid.
   const std::map<int, Tool> used = tools_in_use(commands, tools);
   double spacing = options.grid_mm > 0 ? options.grid_mm : default_grid_spacing(used);
-  GridFrame grid = make_grid(bounds, spacing);
+  const std::vector<double> levels = cutting_levels(commands, tools);
+  auto grid_at = [&](double mm) {
+    GridFrame g = make_grid(bounds, mm);
+    if (options.engine == EngineKind::Voxel) g.z_levels = levels;
+    return g;
+  };
+  GridFrame grid = grid_at(spacing);
   auto cells = [&](const GridFrame& g) {
     double n = double(g.nx) * double(g.ny);
-    if (options.engine == EngineKind::Voxel)
-      n *= std::ceil((g.z1 - g.z0) / std::min(g.dx, g.dy) - 1e-9);
+    if (options.engine == EngineKind::Voxel) n *= double(voxel_layer_bounds(g).size() - 1);
     return n;
   };
   const double limit =
@@ -135,7 +155,7 @@ RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const 
     const double power = options.engine == EngineKind::Voxel ? 1.0 / 3.0 : 0.5;
     while (cells(grid) > limit) {
       spacing *= std::max(1.01, std::pow(cells(grid) / limit, power));
-      grid = make_grid(bounds, spacing);
+      grid = grid_at(spacing);
     }
     diag(Severity::Note, 0,
          "grid coarsened to " + format_mm3(spacing) + " mm to stay within " +

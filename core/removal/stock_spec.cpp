@@ -70,12 +70,16 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* er
 std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
                                       const Timeline& timeline, const std::map<int, Tool>& tools) {
   constexpr double inf = std::numeric_limits<double>::infinity();
+  // A level move: travels in XY and starts and ends at one Z (lines, XY arcs).
+  constexpr double kMinXyMm = 1e-6, kSameZMm = 1e-9;
   Box3 b{inf, inf, inf, -inf, -inf, -inf};
+  double top_level = -inf; // highest Z of a level move
+  double top_start = -inf; // highest Z a cutting move starts from (drilling-only programs)
   bool any = false;
   auto include = [&](const Pose& p, double radius) {
     b.xmin = std::min(b.xmin, p.x - radius), b.xmax = std::max(b.xmax, p.x + radius);
     b.ymin = std::min(b.ymin, p.y - radius), b.ymax = std::max(b.ymax, p.y + radius);
-    b.zmin = std::min(b.zmin, p.z), b.zmax = std::max(b.zmax, p.z);
+    b.zmin = std::min(b.zmin, p.z);
   };
   for (const TimedCommand& tc : timeline.commands) {
     if (tc.command >= commands.size()) continue;
@@ -93,9 +97,16 @@ std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
     if (cmd.kind == CanonKind::Arc && tc.samples.size() < 3)
       for (int k = 1; k < 64; ++k)
         include(point_on_move(cmd, k / 64.0), r);
+    top_start = std::max(top_start, cmd.start.z);
+    const bool travels_in_xy =
+        cmd.kind == CanonKind::Arc ||
+        std::hypot(cmd.end.x - cmd.start.x, cmd.end.y - cmd.start.y) > kMinXyMm;
+    if (travels_in_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
+      top_level = std::max(top_level, cmd.start.z);
   }
   if (!any) return std::nullopt;
-  return b; // may have no height (every cut at one level): the caller says so
+  b.zmax = top_level > -inf ? top_level : top_start;
+  return b; // may have no height (every level move at one Z): the caller says so
 }
 
 } // namespace ncjoule

@@ -20,6 +20,18 @@ namespace ncjoule::detail {
 // Tiles are squares of this many columns, fixed in the grid (not placed relative to the step).
 inline constexpr int kTileColumns = 32;
 
+inline int tiles_across(const GridFrame& grid) {
+  return (grid.nx + kTileColumns - 1) / kTileColumns;
+}
+inline std::size_t tile_count(const GridFrame& grid) {
+  return std::size_t(tiles_across(grid)) * std::size_t((grid.ny + kTileColumns - 1) / kTileColumns);
+}
+// The tile holding column (i, j).
+inline std::size_t tile_of(const GridFrame& grid, int i, int j) {
+  return std::size_t(j / kTileColumns) * std::size_t(tiles_across(grid)) +
+         std::size_t(i / kTileColumns);
+}
+
 struct TileResult {
   double volume_mm3 = 0;
   std::uint64_t columns_visited = 0;
@@ -27,11 +39,16 @@ struct TileResult {
 };
 
 // Calls visit_column(column index, i, j, x, y, TileResult&) for every column whose centre the
-// step's footprint may cover, tile by tile; returns the sum over tiles in tile order. Steps that
-// touch fewer than `parallel_min_columns` columns run on the calling thread (same result).
-template <class VisitColumn>
+// step's footprint may cover, tile by tile, except in tiles where skip_tile(tile) is true (their
+// columns still count as visited); tile_done(tile, result) follows each tile that was not
+// skipped, on the thread that ran it. Returns the sum over tiles in tile order. Steps that touch
+// fewer than `parallel_min_columns` columns run on the calling thread (same result). `scratch`
+// is reused from step to step.
+template <class SkipTile, class VisitColumn, class TileDone>
 TileResult for_each_footprint_column(const GridFrame& grid, const SweptStep& step,
-                                     std::size_t parallel_min_columns, VisitColumn&& visit_column) {
+                                     std::size_t parallel_min_columns,
+                                     std::vector<TileResult>& scratch, SkipTile&& skip_tile,
+                                     VisitColumn&& visit_column, TileDone&& tile_done) {
   auto first_index = [](double lo, double origin, double d) {
     return int(std::ceil((lo - origin) / d - 0.5));
   };
@@ -52,20 +69,26 @@ TileResult for_each_footprint_column(const GridFrame& grid, const SweptStep& ste
   auto run_tile = [&](std::size_t t) {
     TileResult r;
     const int ti = ti0 + int(t % tiles_x), tj = tj0 + int(t / tiles_x);
-    const int ia = std::max(i0, ti * kTileColumns), ib = std::min(i1, ti * kTileColumns + 31);
-    const int ja = std::max(j0, tj * kTileColumns), jb = std::min(j1, tj * kTileColumns + 31);
+    const std::size_t tile = tile_of(grid, ti * kTileColumns, tj * kTileColumns);
+    const bool skip = skip_tile(tile);
+    const int ia = std::max(i0, ti * kTileColumns);
+    const int ib = std::min(i1, ti * kTileColumns + kTileColumns - 1);
+    const int ja = std::max(j0, tj * kTileColumns);
+    const int jb = std::min(j1, tj * kTileColumns + kTileColumns - 1);
     for (int j = ja; j <= jb; ++j) {
       const double y = grid.column_y(j);
       double xlo, xhi;
       if (!step.row_span(y, xlo, xhi)) continue;
       const int a = std::max(ia, first_index(xlo, grid.x0, grid.dx));
       const int b = std::min(ib, last_index(xhi, grid.x0, grid.dx));
+      if (a > b) continue;
+      r.columns_visited += std::uint64_t(b - a + 1);
+      if (skip) continue;
       const std::size_t row = std::size_t(j) * std::size_t(grid.nx);
-      for (int i = a; i <= b; ++i) {
-        ++r.columns_visited;
+      for (int i = a; i <= b; ++i)
         visit_column(row + std::size_t(i), i, j, grid.column_x(i), y, r);
-      }
     }
+    if (!skip) tile_done(tile, r);
     return r;
   };
 
@@ -81,15 +104,15 @@ TileResult for_each_footprint_column(const GridFrame& grid, const SweptStep& ste
       add(run_tile(t));
     return total;
   }
-  std::vector<TileResult> per_tile(tiles);
+  scratch.assign(tiles, TileResult{});
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, tiles, 1),
       [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t t = range.begin(); t != range.end(); ++t)
-          per_tile[t] = run_tile(t);
+          scratch[t] = run_tile(t);
       },
       tbb::simple_partitioner());
-  for (const TileResult& r : per_tile)
+  for (const TileResult& r : scratch)
     add(r);
   return total;
 }

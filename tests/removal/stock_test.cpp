@@ -99,7 +99,7 @@ TEST_CASE("STL stock with a gap: columns hold two intervals") {
 TEST_CASE("default stock: bounding box of the cutting moves") {
   const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
   ProgramBuilder p;
-  p.tool(1).feed_rate(300).rapid(-50, -50, 20).rapid(0, 0, 1).feed(0, 0, -3);
+  p.tool(1).feed_rate(300).rapid(-50, -50, 20).rapid(0, 0, 1).feed(0, 0, -1).feed(40, 0, -1);
   p.feed(40, 0, -3).arc(40, 20, -3, 40, 10, +1).rapid(40, 20, 20);
   const Timeline tl = constant_speed_timeline(p.commands(), 0.1);
   const auto box = default_stock_box(p.commands(), tl, tools);
@@ -109,10 +109,11 @@ TEST_CASE("default stock: bounding box of the cutting moves") {
   CHECK(box->ymin == doctest::Approx(-3));
   CHECK(box->ymax == doctest::Approx(23));
   CHECK(box->zmin == -3);
-  CHECK(box->zmax == 1); // the highest Z a feed move starts from; rapids do not count
+  CHECK(box->zmax == -1); // the highest level move; the plunge from Z1 and rapids do not count
 
   const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
   CHECK(r.stock_description.find("default") != std::string::npos);
+  CHECK(r.stock_description.find("travels in XY") != std::string::npos);
   CHECK(r.removed_mm3 > 0);
 
   ProgramBuilder air;
@@ -122,4 +123,32 @@ TEST_CASE("default stock: bounding box of the cutting moves") {
   CHECK(none.removed_mm3 == 0);
   REQUIRE(none.diagnostics.size() == 1);
   CHECK(none.diagnostics[0].severity == Severity::Warning);
+}
+
+TEST_CASE("default stock: feed plunges from a clearance plane do not raise its top") {
+  // Two slots, at Z-2 and Z-4, each entered by a feed plunge from the clearance plane Z10;
+  // between them the tool crosses at the retract plane Z2 by rapid. A top at the clearance
+  // plane would put the rapid at Z2 inside the stock (a false collision) and count the plunges'
+  // way through 12 mm of air as cutting.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(300).rapid(0, 0, 10).feed(0, 0, -2).feed(40, 0, -2).rapid(40, 0, 2);
+  p.rapid(0, 0, 2).rapid(0, 0, 10).feed(0, 0, -4).feed(40, 0, -4).rapid(40, 0, 10);
+  const Timeline tl = constant_speed_timeline(p.commands(), 0.1);
+  const auto box = default_stock_box(p.commands(), tl, tools);
+  REQUIRE(box);
+  CHECK(box->zmax == -2);
+  CHECK(box->zmin == -4);
+
+  const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
+  for (const Diagnostic& d : r.diagnostics)
+    CHECK_MESSAGE(d.severity == Severity::Note, d.message);
+  for (const CommandRemoval& c : r.commands)
+    CHECK_FALSE(c.collision);
+  // The box is the second slot's layer: 2 mm of the 46 x 6 mm stadium footprint of both slots
+  // (with half discs); the second slot removes all of it, the first nothing.
+  const double layer = (40 * 6 + std::numbers::pi * 9) * 2;
+  CHECK(r.stock_volume_mm3 == doctest::Approx(46 * 6 * 2).epsilon(1e-9));
+  CHECK(r.removed_mm3 == doctest::Approx(layer).epsilon(2e-3));
+  CHECK(r.commands[2].removed_mm3 == 0); // the first slot runs along the top
 }

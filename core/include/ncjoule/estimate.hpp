@@ -23,7 +23,28 @@ struct EstimateOptions {
   RemovalOptions removal;
   EnergyOptions energy;
   ToolTable tool_table; // tool lengths for G43 (optional)
+  // Tools from a job file or the command line; a tool here replaces the program's header
+  // comment for the same number.
+  std::map<int, Tool> tools;
 };
+
+// A job file (TOML) says what a program is cut from and with:
+//   stock = "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX"   (mm; or an .stl path)   or   stock_stl = "x.stl"
+//   [[tool]]  number = 1, type = "flat" | "ball" | "bullnose" | "drill" | "chamfer",
+//             diameter_mm, corner_radius_mm, point_angle_deg, tip_diameter_mm,
+//             flute_length_mm, shank_diameter_mm
+// Paths are relative to the job file's folder.
+struct JobFile {
+  std::string path;
+  std::optional<StockSpec> stock; // empty: the job gives none
+  std::map<int, Tool> tools;
+};
+// Parses the text of a job file that lives at `path`. Errors (file, line, column, key and what
+// is wrong) go to `diagnostics` and give std::nullopt; unknown keys are warnings.
+std::optional<JobFile> parse_job_file(std::string_view text, const std::string& path,
+                                      std::vector<Diagnostic>& diagnostics);
+// The same, reading the file.
+std::optional<JobFile> read_job_file(const std::string& path, std::vector<Diagnostic>& diagnostics);
 
 // Everything the results say about one source line, over every time it ran.
 struct LineSummary {

@@ -80,6 +80,16 @@ std::string tool_problem(const Tool& tool);
 std::map<int, Tool> parse_tool_comments(const SourceFile& source,
                                         std::vector<Diagnostic>& diagnostics);
 
+// The tool types of tool tables and of --tool: "flat", "ball", "bullnose", "drill",
+// "chamfer" (any case); std::nullopt for anything else.
+std::optional<ToolShape> tool_shape_from_name(std::string_view name);
+
+// A tool written as "N:TYPE:DIAMETER[:EXTRA[:EXTRA]]" (mm and degrees), as on the command line:
+//   1:flat:6   2:ball:6   3:bullnose:10:1.5 (corner radius)   4:drill:6.8:118 (point angle,
+//   118 when left out)   5:chamfer:12:90:0.5 (included angle, 90 when left out; tip flat).
+// Returns std::nullopt with *error set when the text is not understood or the tool is unusable.
+std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error = nullptr);
+
 // One error per tool number that a move uses (state.tool) but `tools` does not define, naming
 // the tool and the first source line that uses it. `file` is used in the diagnostics.
 std::vector<Diagnostic> check_tools_defined(const std::vector<CanonCommand>& commands,
@@ -109,10 +119,17 @@ struct StockSpec {
 std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* error = nullptr);
 
 // The default stock: the bounding box of the cutting moves (Feed, Arc), extended in X and Y by
-// the radius of the tool making each move, from the lowest tip Z of a cutting move up to the
-// highest Z any cutting move starts or ends at (so a plunge at feed from a clearance plane
-// counts as entering the stock there). Moves whose tool is unknown are left out.
-// std::nullopt when the program has no cutting move.
+// the radius of the tool making each move. Moves whose tool is unknown are left out.
+//  - Bottom: the lowest tip Z of a cutting move.
+//  - Top: the highest Z at which a cutting move travels in XY at constant Z (a line or an XY
+//    arc at one level). CAM clears material level by level with such moves, while the moves
+//    that bring the tool down (plunges, ramps, helical entries) often start at feed from a
+//    clearance or retract plane above the material: counting those would raise the top to the
+//    clearance plane, inflate the stock and make later rapids below that plane look like
+//    collisions. Only when the program has no such level move (a drilling-only program) is the
+//    top the highest Z a cutting move starts from.
+// std::nullopt when the program has no cutting move; the box may have no height (every level
+// move at one Z), which the caller reports.
 std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
                                       const Timeline& timeline, const std::map<int, Tool>& tools);
 
@@ -134,6 +151,9 @@ struct GridFrame {
   double dx = 1, dy = 1;
   int nx = 0, ny = 0;
   double z0 = 0, z1 = 0; // Z extent of the stock (the voxel engine's layers)
+  // Voxel engine: Z values its layer boundaries are placed on (besides z0 and z1), so that the
+  // flat floors a program cuts fall between layers instead of through them. Empty: uniform.
+  std::vector<double> z_levels;
   std::size_t columns() const { return std::size_t(nx) * std::size_t(ny); }
   double column_x(int i) const { return x0 + (i + 0.5) * dx; }
   double column_y(int j) const { return y0 + (j + 0.5) * dy; }
@@ -166,6 +186,10 @@ std::unique_ptr<StockShape> make_mesh_stock(TriangleMesh mesh, std::string descr
 // Engines
 // ---------------------------------------------------------------------------------------------
 
+// Dexel: the default, exact in Z. Voxel: the reference in the manner of the Anziani thesis, a
+// 3-D grid of one byte per voxel where, for every step, each voxel in the bounding box of the
+// tool's swept volume has its centre tested against the tool; slow on purpose, and simple
+// enough to trust.
 enum class EngineKind : std::uint8_t { Dexel, Voxel };
 std::string_view engine_name(EngineKind kind); // "dexel", "voxel"
 
@@ -195,10 +219,16 @@ public:
   virtual const EngineStats& stats() const = 0;
 };
 
-// `grid` is the XY grid; the voxel engine also cuts [grid.z0, grid.z1] into layers of about
-// min(dx, dy).
+// `grid` is the XY grid. The voxel engine also cuts [grid.z0, grid.z1] into layers of at most
+// min(dx, dy), with boundaries on grid.z_levels (see voxel_layer_bounds).
 std::unique_ptr<RemovalEngine> make_removal_engine(EngineKind kind, const StockShape& stock,
                                                    const GridFrame& grid);
+
+// The voxel engine's layer boundaries, from grid.z0 to grid.z1: every Z of grid.z_levels inside
+// the stock is a boundary (up to as many levels as there are uniform layers; beyond that the
+// levels are ignored), and each gap between boundaries is split evenly into layers no thicker
+// than min(dx, dy).
+std::vector<double> voxel_layer_bounds(const GridFrame& grid);
 
 // ---------------------------------------------------------------------------------------------
 // Running a program

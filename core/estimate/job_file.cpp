@@ -1,0 +1,173 @@
+// Job files: the stock and the tool table of a job, in TOML (see JobFile in estimate.hpp).
+// Every error names the file, the line and column, and the key.
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "ncjoule/estimate.hpp"
+
+namespace ncjoule {
+namespace {
+
+struct JobReader {
+  const std::string& path;
+  std::vector<Diagnostic>& diagnostics;
+  bool failed = false;
+
+  void say(Severity severity, const toml::node* node, const std::string& key,
+           const std::string& what) {
+    int line = 0, column = 0;
+    if (node) line = int(node->source().begin.line), column = int(node->source().begin.column);
+    diagnostics.push_back({severity, path, line, column, key + ": " + what});
+    if (severity == Severity::Error) failed = true;
+  }
+  void error(const toml::node* node, const std::string& key, const std::string& what) {
+    say(Severity::Error, node, key, what);
+  }
+
+  // A path from the job file, relative to the job file's folder.
+  std::string resolve(const std::string& relative) const {
+    const std::filesystem::path p(relative);
+    if (p.is_absolute()) return relative;
+    return (std::filesystem::path(path).parent_path() / p).lexically_normal().string();
+  }
+
+  std::optional<double> number(const toml::table& table, std::string_view key,
+                               const std::string& where) {
+    const toml::node* node = table.get(key);
+    if (!node) return std::nullopt;
+    const std::string name = where + std::string(key);
+    if (!node->is_number()) {
+      error(node, name, "must be a number");
+      return std::nullopt;
+    }
+    return node->value<double>();
+  }
+
+  void read_tool(const toml::node& node, std::size_t index, JobFile& job) {
+    const std::string where = "tool[" + std::to_string(index + 1) + "].";
+    const toml::table* t = node.as_table();
+    if (!t) return error(&node, "tool[" + std::to_string(index + 1) + "]", "must be a table");
+    for (const auto& [key, value] : *t) {
+      static const char* known[] = {"number",          "type",
+                                    "diameter_mm",     "corner_radius_mm",
+                                    "point_angle_deg", "tip_diameter_mm",
+                                    "flute_length_mm", "shank_diameter_mm",
+                                    "description"};
+      if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
+        say(Severity::Warning, &value, where + std::string(key.str()), "unknown key, ignored");
+    }
+    Tool tool;
+    const toml::node* number = t->get("number");
+    if (!number || !number->is_integer() || number->value<std::int64_t>() < 0)
+      return error(number ? number : &node, where + "number",
+                   "must be a whole tool number (e.g. number = 1)");
+    tool.number = int(*number->value<std::int64_t>());
+    const std::string tool_name =
+        "tool[" + std::to_string(index + 1) + "] (T" + std::to_string(tool.number) + ").";
+    const toml::node* type = t->get("type");
+    const std::optional<ToolShape> shape = type && type->is_string()
+                                               ? tool_shape_from_name(*type->value<std::string>())
+                                               : std::nullopt;
+    if (!shape)
+      return error(type ? type : &node, tool_name + "type",
+                   "must be one of \"flat\", \"ball\", \"bullnose\", \"drill\", \"chamfer\"");
+    tool.shape = *shape;
+    const std::optional<double> diameter = this->number(*t, "diameter_mm", tool_name);
+    if (!diameter || !(*diameter > 0))
+      return error(t->get("diameter_mm") ? t->get("diameter_mm") : &node, tool_name + "diameter_mm",
+                   "must be given, in mm, above 0");
+    tool.diameter_mm = *diameter;
+    if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = tool.diameter_mm / 2;
+    if (tool.shape == ToolShape::Chamfer) tool.tip_angle_deg = 90;
+    if (auto v = this->number(*t, "corner_radius_mm", tool_name)) tool.corner_radius_mm = *v;
+    if (auto v = this->number(*t, "point_angle_deg", tool_name)) tool.tip_angle_deg = *v;
+    if (auto v = this->number(*t, "tip_diameter_mm", tool_name)) tool.tip_diameter_mm = *v;
+    if (auto v = this->number(*t, "flute_length_mm", tool_name)) tool.cutting_length_mm = *v;
+    if (auto v = this->number(*t, "shank_diameter_mm", tool_name)) tool.shank_diameter_mm = *v;
+    if (const toml::node* d = t->get("description"); d && d->is_string())
+      tool.description = *d->value<std::string>();
+    else
+      tool.description = std::string(tool_shape_name(tool.shape)) + " from " + path;
+    if (const std::string problem = tool_problem(tool); !problem.empty())
+      return error(&node, tool_name.substr(0, tool_name.size() - 1), problem);
+    if (job.tools.count(tool.number))
+      return error(&node, tool_name.substr(0, tool_name.size() - 1),
+                   "tool T" + std::to_string(tool.number) + " is defined twice");
+    job.tools[tool.number] = tool;
+  }
+};
+
+} // namespace
+
+std::optional<JobFile> parse_job_file(std::string_view text, const std::string& path,
+                                      std::vector<Diagnostic>& diagnostics) {
+  toml::table document;
+  try {
+    document = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                           "not valid TOML: " + std::string(e.description())});
+    return std::nullopt;
+  }
+  JobReader reader{path, diagnostics};
+  JobFile job;
+  job.path = path;
+
+  for (const auto& [key, value] : document)
+    if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "tool")
+      reader.say(Severity::Warning, &value, std::string(key.str()), "unknown key, ignored");
+
+  const toml::node* stock = document.get("stock");
+  const toml::node* stock_stl = document.get("stock_stl");
+  if (stock && stock_stl) {
+    reader.error(stock_stl, "stock_stl", "give either stock or stock_stl, not both");
+  } else if (stock) {
+    std::string error;
+    if (!stock->is_string()) {
+      reader.error(stock, "stock", "must be a string such as \"box:0,0,-20,100,60,0\"");
+    } else if (auto spec = parse_stock_spec(*stock->value<std::string>(), &error)) {
+      if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = reader.resolve(spec->stl_path);
+      job.stock = spec;
+    } else {
+      reader.error(stock, "stock", error);
+    }
+  } else if (stock_stl) {
+    if (!stock_stl->is_string() || stock_stl->value<std::string>()->empty()) {
+      reader.error(stock_stl, "stock_stl", "must be the path of an STL file");
+    } else {
+      StockSpec spec;
+      spec.kind = StockSpec::Kind::Stl;
+      spec.stl_path = reader.resolve(*stock_stl->value<std::string>());
+      job.stock = spec;
+    }
+  }
+
+  if (const toml::node* tools = document.get("tool")) {
+    if (const toml::array* list = tools->as_array()) {
+      for (std::size_t k = 0; k < list->size(); ++k)
+        reader.read_tool(*list->get(k), k, job);
+    } else {
+      reader.error(tools, "tool", "must be an array of tables ([[tool]] entries)");
+    }
+  }
+  if (reader.failed) return std::nullopt;
+  return job;
+}
+
+std::optional<JobFile> read_job_file(const std::string& path,
+                                     std::vector<Diagnostic>& diagnostics) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    diagnostics.push_back({Severity::Error, path, 0, 0, "cannot open the job file"});
+    return std::nullopt;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_job_file(text.str(), path, diagnostics);
+}
+
+} // namespace ncjoule

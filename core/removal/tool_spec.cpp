@@ -1,0 +1,95 @@
+// Tools written out by hand: the type names of tool tables and the compact "N:TYPE:D[:...]"
+// form of the command line.
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "ncjoule/removal.hpp"
+
+namespace ncjoule {
+namespace {
+
+bool parse_number(std::string_view text, double& value) {
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return !text.empty() && ec == std::errc() && end == text.data() + text.size() &&
+         std::isfinite(value);
+}
+
+std::vector<std::string_view> split(std::string_view text, char separator) {
+  std::vector<std::string_view> fields;
+  for (;;) {
+    const std::size_t at = text.find(separator);
+    fields.push_back(text.substr(0, at));
+    if (at == std::string_view::npos) return fields;
+    text.remove_prefix(at + 1);
+  }
+}
+
+} // namespace
+
+std::optional<ToolShape> tool_shape_from_name(std::string_view name) {
+  std::string low(name);
+  for (char& c : low)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (low == "flat") return ToolShape::FlatEndMill;
+  if (low == "ball") return ToolShape::BallEndMill;
+  if (low == "bullnose") return ToolShape::BullNose;
+  if (low == "drill") return ToolShape::Drill;
+  if (low == "chamfer") return ToolShape::Chamfer;
+  return std::nullopt;
+}
+
+std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error) {
+  auto fail = [&](std::string message) -> std::optional<Tool> {
+    if (error) *error = std::move(message);
+    return std::nullopt;
+  };
+  const std::vector<std::string_view> f = split(text, ':');
+  if (f.size() < 3)
+    return fail("a tool is N:TYPE:DIAMETER, e.g. 1:flat:6, 2:ball:6, 3:drill:6.8:118");
+  Tool tool;
+  double number = 0;
+  if (!parse_number(f[0], number) || number < 0 || number != std::floor(number) || number > 1e6)
+    return fail("tool number '" + std::string(f[0]) + "' is not a whole number");
+  tool.number = int(number);
+  const auto shape = tool_shape_from_name(f[1]);
+  if (!shape)
+    return fail("tool type '" + std::string(f[1]) +
+                "' is not one of flat, ball, bullnose, drill, chamfer");
+  tool.shape = *shape;
+  double v[4] = {0, 0, 0, 0};
+  for (std::size_t k = 2; k < f.size(); ++k)
+    if (k - 2 >= 4 || !parse_number(f[k], v[k - 2]))
+      return fail("tool value '" + std::string(f[k]) + "' is not a number");
+  const std::size_t extras = f.size() - 3;
+  tool.diameter_mm = v[0];
+  switch (tool.shape) {
+  case ToolShape::FlatEndMill:
+  case ToolShape::BallEndMill:
+    if (extras > 0) return fail("a flat or ball end mill takes only a diameter");
+    if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = tool.diameter_mm / 2;
+    break;
+  case ToolShape::BullNose:
+    if (extras != 1) return fail("a bull nose is N:bullnose:DIAMETER:CORNER_RADIUS");
+    tool.corner_radius_mm = v[1];
+    break;
+  case ToolShape::Drill:
+    if (extras > 1) return fail("a drill is N:drill:DIAMETER[:POINT_ANGLE]");
+    tool.tip_angle_deg = extras ? v[1] : 118;
+    break;
+  case ToolShape::Chamfer:
+    if (extras > 2) return fail("a chamfer mill is N:chamfer:DIAMETER[:ANGLE[:TIP_DIAMETER]]");
+    tool.tip_angle_deg = extras ? v[1] : 90;
+    tool.tip_diameter_mm = extras > 1 ? v[2] : 0;
+    break;
+  }
+  tool.description = std::string(text);
+  if (const std::string problem = tool_problem(tool); !problem.empty())
+    return fail("tool T" + std::to_string(tool.number) + " " + problem);
+  return tool;
+}
+
+} // namespace ncjoule

@@ -89,21 +89,24 @@ double zhou_sec_model_j_mm3(const ZhouConstants& z, double rpm, double mrr_mm3_s
   return z.d1 * std::pow(rpm, z.d2) + z.d3 * rpm / mrr_mm3_s + z.d4 / mrr_mm3_s;
 }
 
+// Every constant the model's formula uses, with its unit; per-axis values as X/Y/Z. Numbers are
+// printed with %g so that they read back as the profile wrote them.
 std::string describe_power_constants(const PowerConstants& k) {
-  char text[512];
+  char text[640];
   const auto& p = k.pavanaskar;
   const auto& z = k.zhou;
   switch (k.model) {
   case PowerModel::Zhou:
     std::snprintf(text, sizeof text,
-                  "Zhou: P = %g kW + %g kW/rpm*n + %g*n^%g*MRR; tool change %g W", z.c1_kw,
-                  z.c2_kw_per_rpm, z.c3, z.c4, k.tool_change_w);
+                  "Zhou: P = %g kW + %g kW/rpm*n + %g*n^%g*MRR kW (n rpm, MRR mm^3/s); "
+                  "tool change %g W",
+                  z.c1_kw, z.c2_kw_per_rpm, z.c3, z.c4, k.tool_change_w);
     break;
   case PowerModel::Pavanaskar:
     std::snprintf(text, sizeof text,
-                  "Pavanaskar Eq. 3.12: tare %g W, coolant %g W, spindle %g W + %g W/rpm, "
-                  "move KA %g/%g/%g W KB %g/%g/%g W/(mm/s), cut KA %g/%g/%g W "
-                  "KB %g/%g/%g W/(mm^3/s); tool change %g W",
+                  "Pavanaskar Eq. 3.12: tare %g W, coolant %g W, spindle %g W + %g W/rpm*n, "
+                  "move X/Y/Z KA %g/%g/%g W KB %g/%g/%g W/(mm/s), "
+                  "cut X/Y/Z KA %g/%g/%g W KB %g/%g/%g W/(mm^3/s); tool change %g W",
                   p.tare_w, p.coolant_w, p.spindle_ka_w, p.spindle_kb_w_per_rpm, p.move_ka_w[0],
                   p.move_ka_w[1], p.move_ka_w[2], p.move_kb_w_per_mm_s[0], p.move_kb_w_per_mm_s[1],
                   p.move_kb_w_per_mm_s[2], p.cut_ka_w[0], p.cut_ka_w[1], p.cut_ka_w[2],
@@ -112,9 +115,10 @@ std::string describe_power_constants(const PowerConstants& k) {
     break;
   case PowerModel::Combined:
     std::snprintf(text, sizeof text,
-                  "Combined: tare %g W, coolant %g W, spindle %g W + %g W/rpm, "
-                  "move KA %g/%g/%g W KB %g/%g/%g W/(mm/s), cutting %g*n^%g*MRR kW; "
-                  "tool change %g W",
+                  "Combined (Pavanaskar Eq. 3.12 with Zhou's cutting term): tare %g W, "
+                  "coolant %g W, spindle %g W + %g W/rpm*n, "
+                  "move X/Y/Z KA %g/%g/%g W KB %g/%g/%g W/(mm/s), "
+                  "cutting %g*n^%g*MRR kW (n rpm, MRR mm^3/s); tool change %g W",
                   p.tare_w, p.coolant_w, p.spindle_ka_w, p.spindle_kb_w_per_rpm, p.move_ka_w[0],
                   p.move_ka_w[1], p.move_ka_w[2], p.move_kb_w_per_mm_s[0], p.move_kb_w_per_mm_s[1],
                   p.move_kb_w_per_mm_s[2], z.c3, z.c4, k.tool_change_w);

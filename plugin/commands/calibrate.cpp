@@ -1,17 +1,20 @@
-// `ncjoule calibrate`: fits a machine's power constants from steady-state tables (and, once
-// the planner and removal stages can run a program here, from a power log), prints each
-// constant with its standard error and each fit's RMSE and R^2, and writes a new profile.
+// `ncjoule calibrate`: fits a machine's power constants from steady-state tables and from a
+// time-stamped power log of a known program, prints each constant with its standard error and
+// each fit's RMSE and R^2, and writes a new profile with the fitted values and their sources.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "ncjoule/calibrate.hpp"
+#include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
 namespace ncjoule::cli {
@@ -25,12 +28,17 @@ struct CalibrateCliOptions {
   double tare_w = -1;
   double coolant_w = -1;
   double tool_change_w = -1;
+  std::optional<double> baseline_w; // subtracted from the spindle and axis tables instead of tare
   std::string spindle;
   std::string axis[3];
   std::string cut[3];
   std::string zhou;
   std::string log;
   std::string program;
+  std::string stock;   // as estimate's --stock
+  std::string dialect; // as estimate's --dialect
+  double max_offset_s = 60;
+  std::string loss = "huber";
 };
 
 std::optional<std::string> read_text(const std::string& path) {
@@ -76,8 +84,135 @@ std::string note_for(const FitReport& fit, const FittedConstant& c, const std::s
   return text;
 }
 
-int run_calibrate(const CalibrateCliOptions& o) {
+// What the fits have produced so far: the constants, the source of each, and the files used.
+struct Calibration {
   PowerConstants constants;
+  std::map<PowerParameter, std::string> notes;
+  std::vector<std::string> fitted_files;
+  bool fitted_any = false;
+
+  void use(const FitReport& fit, const std::string& file, const std::string& how = "") {
+    print_report(fit);
+    apply_fit(constants, fit);
+    for (const FittedConstant& c : fit.constants)
+      if (!c.held) notes[c.parameter] = note_for(fit, c, file + how);
+    fitted_files.push_back(fit.what + " from " + file);
+    fitted_any = true;
+  }
+};
+
+std::optional<RobustLoss> loss_from_name(const std::string& name) {
+  if (name == "huber") return RobustLoss::Huber;
+  if (name == "cauchy") return RobustLoss::Cauchy;
+  if (name == "none") return RobustLoss::None;
+  return std::nullopt;
+}
+
+// The log fit: runs the program through the whole pipeline on the machine (tools from its
+// header comments, the stock as estimate takes it), builds its operating trace, finds the time
+// offset between log and program, and fits the model's constants to the whole trace.
+int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibration& calibration) {
+  if (o.program.empty() || o.machine.empty()) {
+    std::fprintf(stderr, "--log needs --program (the program the log recorded) and --machine "
+                         "(the machine it ran on: its kinematics time the program)\n");
+    return kUsage;
+  }
+  const auto loss = loss_from_name(o.loss);
+  if (!loss) {
+    std::fprintf(stderr, "--loss must be huber, cauchy or none\n");
+    return kUsage;
+  }
+  EstimateOptions options;
+  if (!o.dialect.empty()) {
+    options.dialect = dialect_from_option(o.dialect);
+    if (!options.dialect) return kUsage;
+  }
+  if (!o.stock.empty()) {
+    std::string error;
+    options.stock = parse_stock_spec(o.stock, &error);
+    if (!options.stock) {
+      std::fprintf(stderr, "bad --stock '%s': %s\n", o.stock.c_str(), error.c_str());
+      return kUsage;
+    }
+  }
+  std::vector<Diagnostic> diagnostics;
+  const auto log = read_power_log(o.log, diagnostics);
+  print_diagnostics(diagnostics);
+  if (!log) return kInputError;
+  for (const Diagnostic& d : diagnostics)
+    if (d.severity == Severity::Error) return kInputError;
+
+  const auto source = read_source(o.program);
+  if (!source) return kInputError;
+  // The trace depends only on the machine's kinematics; the constants fitted so far are the
+  // starting point of the fit.
+  machine.power = calibration.constants;
+  const Estimate e = estimate_program(*source, machine, options);
+  print_diagnostics(e.diagnostics);
+  bool program_errors = e.failed;
+  for (const Diagnostic& d : e.diagnostics)
+    program_errors = program_errors || d.severity == Severity::Error;
+  if (program_errors) {
+    std::fprintf(stderr,
+                 "%s: cannot be run on the model (see above); define the tools in the "
+                 "program's header comments and give the stock with --stock\n",
+                 o.program.c_str());
+    return kInputError;
+  }
+  std::vector<Diagnostic> trace_diagnostics;
+  const auto trace = operating_trace(e.toolpath.commands, e.timeline,
+                                     e.removal ? &*e.removal : nullptr, &trace_diagnostics);
+  print_diagnostics(trace_diagnostics);
+
+  LogFitOptions fit_options;
+  fit_options.max_offset_s = o.max_offset_s;
+  fit_options.loss = *loss;
+  const LogFitResult fit = fit_power_log(*log, trace, calibration.constants, fit_options);
+  if (fit.report.points == 0 || (!fit.report.converged && !fit.report.message.empty())) {
+    std::fprintf(stderr, "%s: the log fit failed: %s\n", o.log.c_str(), fit.report.message.c_str());
+    return kInputError;
+  }
+  std::printf("%s: %zu samples over %.1f s; %s runs %.1f s on %s\n", o.log.c_str(), log->t_s.size(),
+              log->t_s.back() - log->t_s.front(), o.program.c_str(), e.timeline.total_s,
+              machine.name.c_str());
+  std::printf("time offset: the program starts %.3f s into the log\n", fit.offset_s);
+  for (const std::string& note : fit.notes)
+    std::printf("  note: %s\n", note.c_str());
+  char how[160];
+  std::snprintf(how, sizeof how, " (program %s, offset %.3f s, %s loss)", o.program.c_str(),
+                fit.offset_s, o.loss.c_str());
+  calibration.use(fit.report, o.log, how);
+  calibration.constants = fit.constants; // the fitted values, and the exponent where held
+  return kOk;
+}
+
+// Writes beside the target and renames, so that a failure leaves no half-written profile.
+int write_profile(const std::string& output, const std::string& text) {
+  const std::string temporary = output + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << "# Machine profile written by ncjoule calibrate.\n" << text;
+    if (!out) {
+      std::fprintf(stderr, "%s: cannot write\n", temporary.c_str());
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      return kOutputError;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, output, ec);
+  if (ec) {
+    std::fprintf(stderr, "%s: cannot write: %s\n", output.c_str(), ec.message().c_str());
+    std::filesystem::remove(temporary, ec);
+    return kOutputError;
+  }
+  return kOk;
+}
+
+int run_calibrate(const CalibrateCliOptions& o) {
+  Calibration calibration;
+  PowerConstants& constants = calibration.constants;
+  MachineProfile machine;
   std::string base_text;
   if (!o.machine.empty()) {
     auto text = read_text(o.machine);
@@ -87,12 +222,13 @@ int run_calibrate(const CalibrateCliOptions& o) {
     }
     base_text = *text;
     try {
-      constants = parse_profile(base_text, o.machine).power;
+      machine = parse_profile(base_text, o.machine);
     } catch (const ProfileError& e) {
       std::fprintf(stderr, "%s: %s%s%s\n", e.file().c_str(), e.key().c_str(),
                    e.key().empty() ? "" : ": ", e.reason().c_str());
       return kInputError;
     }
+    constants = machine.power;
   }
   if (!o.model.empty()) {
     auto model = model_from_name(o.model);
@@ -102,94 +238,72 @@ int run_calibrate(const CalibrateCliOptions& o) {
     }
     constants.model = *model;
   }
-  std::map<PowerParameter, std::string> notes;
-  std::vector<std::string> fitted_files;
   auto given = [&](PowerParameter p, double value, const char* option) {
     set_parameter(constants, p, value);
-    notes[p] = std::string("given on the command line (") + option + ")";
+    calibration.notes[p] = std::string("given on the command line (") + option + ")";
   };
   if (o.tare_w >= 0) given(PowerParameter::Tare, o.tare_w, "--tare-w");
   if (o.coolant_w >= 0) given(PowerParameter::Coolant, o.coolant_w, "--coolant-w");
   if (o.tool_change_w >= 0) given(PowerParameter::ToolChange, o.tool_change_w, "--tool-change-w");
 
-  bool fitted_any = false;
-  auto use = [&](const FitReport& fit, const std::string& file) {
-    print_report(fit);
-    apply_fit(constants, fit);
-    for (const FittedConstant& c : fit.constants)
-      if (!c.held) notes[c.parameter] = note_for(fit, c, file);
-    fitted_files.push_back(fit.what + " from " + file);
-    fitted_any = true;
+  // The state the spindle and axis readings are taken above: the tare unless --baseline-w
+  // names another (Pavanaskar subtracted a 375 W starting state, not his 325 W constant power).
+  const double baseline_w = o.baseline_w.value_or(constants.pavanaskar.tare_w);
+  std::string above;
+  if (o.baseline_w) {
+    char text[96];
+    std::snprintf(text, sizeof text, " above a baseline of %g W (--baseline-w)", *o.baseline_w);
+    above = text;
+  }
+  auto with_baseline = [&] {
+    PowerConstants known = constants;
+    known.pavanaskar.tare_w = baseline_w;
+    return known;
   };
   if (!o.spindle.empty()) {
     auto t = read_table(o.spindle, kFieldRpm);
     if (!t) return kInputError;
-    use(fit_spindle(*t, constants.pavanaskar.tare_w), o.spindle);
+    calibration.use(fit_spindle(*t, baseline_w), o.spindle, above);
   }
   for (int i = 0; i < 3; ++i) {
     if (o.axis[i].empty()) continue;
     auto t = read_table(o.axis[i], kFieldFeed);
     if (!t) return kInputError;
-    use(fit_axis_move(*t, static_cast<Axis>(i), constants), o.axis[i]);
+    calibration.use(fit_axis_move(*t, static_cast<Axis>(i), with_baseline()), o.axis[i], above);
   }
   for (int i = 0; i < 3; ++i) {
     if (o.cut[i].empty()) continue;
     auto t = read_table(o.cut[i], kFieldRpm | kFieldFeed | kFieldMrr);
     if (!t) return kInputError;
-    use(fit_axis_cut(*t, static_cast<Axis>(i), constants), o.cut[i]);
+    calibration.use(fit_axis_cut(*t, static_cast<Axis>(i), with_baseline()), o.cut[i], above);
   }
   if (!o.zhou.empty()) {
     auto t = read_table(o.zhou, kFieldRpm | kFieldMrr);
     if (!t) return kInputError;
-    use(fit_zhou_power(*t), o.zhou);
-    use(fit_zhou_sec(*t), o.zhou);
+    calibration.use(fit_zhou_power(*t), o.zhou);
+    calibration.use(fit_zhou_sec(*t), o.zhou);
   }
   if (!o.log.empty()) {
-    // The log fit (fit_power_log) needs the program's operating trace, which comes from the
-    // machine loader, the planner and the removal engine; this command gains it when they can
-    // run here.
-    std::fprintf(stderr,
-                 "%s: fitting a power log needs the planner and the removal engine, which this "
-                 "build does not have yet\n",
-                 o.log.c_str());
-    return kInputError;
+    if (const int status = fit_from_log(o, machine, calibration); status != kOk) return status;
   }
-  if (!fitted_any) {
+  if (!calibration.fitted_any) {
     std::fprintf(stderr, "nothing to fit: give at least one of --spindle, --axis-x/y/z, "
-                         "--cut-x/y/z, --zhou (see --help)\n");
+                         "--cut-x/y/z, --zhou, --log (see --help)\n");
     return kUsage;
   }
   std::string error;
   const std::string name =
       !o.name.empty() ? o.name : std::filesystem::path(o.output).stem().string();
   std::string source = "ncjoule calibrate:";
-  for (std::size_t i = 0; i < fitted_files.size(); ++i)
-    source += (i ? "; " : " ") + fitted_files[i];
+  for (std::size_t i = 0; i < calibration.fitted_files.size(); ++i)
+    source += (i ? "; " : " ") + calibration.fitted_files[i];
   if (!o.machine.empty()) source += "; other constants from " + o.machine;
-  auto text = profile_with_power(base_text, name, constants, notes, source, error);
+  auto text = profile_with_power(base_text, name, constants, calibration.notes, source, error);
   if (!text) {
     std::fprintf(stderr, "%s: %s\n", o.machine.c_str(), error.c_str());
     return kInputError;
   }
-  // Write beside the target and rename, so a failure leaves no half-written profile.
-  const std::string temporary = o.output + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << "# Machine profile written by ncjoule calibrate.\n" << *text;
-    if (!out) {
-      std::fprintf(stderr, "%s: cannot write\n", temporary.c_str());
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      return kOutputError;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, o.output, ec);
-  if (ec) {
-    std::fprintf(stderr, "%s: cannot write: %s\n", o.output.c_str(), ec.message().c_str());
-    std::filesystem::remove(temporary, ec);
-    return kOutputError;
-  }
+  if (const int status = write_profile(o.output, *text); status != kOk) return status;
   std::printf("wrote %s (model %s)\n", o.output.c_str(),
               std::string(model_name(constants.model)).c_str());
   return kOk;
@@ -211,8 +325,13 @@ const Registration registration([](CLI::App& app, int& exit_code) {
                   "Power model of the new profile: combined, pavanaskar, zhou");
   cmd->add_option("--name", o->name, "Machine name in the new profile (default: output file name)");
   cmd->add_option("--tare-w", o->tare_w,
-                  "Power with the machine on and idle, spindle off (W); subtracted from the "
-                  "spindle and axis tables")
+                  "Power with the machine on and idle, spindle off (W), written to the profile; "
+                  "subtracted from the spindle and axis tables unless --baseline-w is given")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--baseline-w", o->baseline_w,
+                  "Power state the spindle and axis table readings are taken above (W), e.g. "
+                  "Pavanaskar's 375 W starting state; default: the tare. Not written to the "
+                  "profile")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--coolant-w", o->coolant_w, "Coolant pump power (W)")
       ->check(CLI::NonNegativeNumber);
@@ -239,8 +358,24 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   auto* log = cmd->add_option("--log", o->log,
                               "Power log (time_s, power_w) of a run of --program on --machine")
                   ->check(CLI::ExistingFile);
-  cmd->add_option("--program", o->program, "NC program the log recorded")
-      ->check(CLI::ExistingFile)
+  auto* program = cmd->add_option("--program", o->program, "NC program the log recorded")
+                      ->check(CLI::ExistingFile)
+                      ->needs(log);
+  log->needs(program);
+  cmd->add_option("--stock", o->stock,
+                  "Stock of the logged run: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL "
+                  "file; default: the bounding box of the cutting moves")
+      ->needs(log);
+  cmd->add_option("--dialect", o->dialect,
+                  "Controller dialect of --program; default: the machine profile's")
+      ->needs(log);
+  cmd->add_option("--max-offset", o->max_offset_s,
+                  "Search the time offset between log and program within +- S seconds "
+                  "(default 60)")
+      ->check(CLI::PositiveNumber)
+      ->needs(log);
+  cmd->add_option("--loss", o->loss, "Robust loss of the log fit: huber (default), cauchy or none")
+      ->check(CLI::IsMember({"huber", "cauchy", "none"}))
       ->needs(log);
   cmd->add_option("-o,--output", o->output, "New profile (TOML) to write")->required();
   cmd->callback([o, &exit_code] { exit_code = run_calibrate(*o); });

@@ -70,6 +70,12 @@ static PowerConstants haas_profile_constants() {
       .power;
 }
 
+// Table 4.1 lists the analyzer's estimate of each power state by its Eq. 3.12 term (P_const,
+// P_spindle, P_move, P_cut), so each row is compared with that component of the prediction, not
+// with whole-machine power: the rows cannot be whole-machine readings, since the X cut at 30 ipm
+// (314 W) would then draw less than the spindle alone at its 3000 rpm trial (1100 - 375 W), and
+// the spindle at 5500 rpm (1257 W) less than the whole machine at 5000 rpm (1520 W). The constant
+// state is whole-machine power with nothing but tare and the coolant pump running.
 static void check_table_4_1(const PowerConstants& k, bool spindle_states) {
   auto run = [&](auto&& build) {
     ncjoule::test::ProgramBuilder b;

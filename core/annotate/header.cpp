@@ -1,0 +1,129 @@
+#include "header.hpp"
+
+#include <algorithm>
+#include <string_view>
+
+#include "ncjoule/energy.hpp"
+#include "number_format.hpp"
+
+namespace ncjoule::annotation {
+namespace {
+
+struct Group {
+  std::string label;
+  std::vector<std::string> fields;
+};
+
+std::string field(std::string_view key, const std::string& value) {
+  return std::string(key) + "=" + value;
+}
+
+Group totals(const Estimate& estimate) {
+  const EnergyResult& e = estimate.energy;
+  Group g{"TOTAL", {}};
+  g.fields.push_back(field("T", format_duration(estimate.timeline.total_s)));
+  g.fields.push_back(field("E", format_si(e.energy_j, "J")));
+  g.fields.push_back(field("E_KWH", format_significant(e.energy_j / 3.6e6, 4, 6)));
+  g.fields.push_back(field("P_MEAN", format_si(e.mean_power_w, "W")));
+  g.fields.push_back(field("P_PEAK", format_si(e.peak_power_w, "W")));
+  g.fields.push_back(field("VOL_MM3", format_significant(e.removed_mm3, 4, 3)));
+  g.fields.push_back(field("SEC_J_MM3", format_significant(e.sec_j_mm3, 3, 4)));
+  g.fields.push_back(field("CO2_KG", format_significant(e.co2_kg, 3, 6)));
+  const std::string currency = safe_token(e.currency, 8);
+  g.fields.push_back(
+      field("COST" + (currency.empty() ? "" : "_" + currency), format_significant(e.cost, 3, 4)));
+  return g;
+}
+
+Group components(const Estimate& estimate) {
+  Group g{"ENERGY", {}};
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
+    std::string key(component_name(PowerComponent(i)));
+    to_upper(key);
+    g.fields.push_back(field(key, format_si(estimate.energy.components_j[i], "J")));
+  }
+  return g;
+}
+
+Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
+  Group g{"MACHINE", {}};
+  g.fields.push_back(field("NAME", safe_token(machine.name, 60)));
+  const std::string& path = machine.source_path;
+  const std::size_t slash = path.find_last_of("/\\");
+  const std::string file = slash == std::string::npos ? path : path.substr(slash + 1);
+  if (!file.empty()) g.fields.push_back(field("PROFILE", safe_token(file, 60)));
+  g.fields.push_back(field("MODEL", std::string(model_name(machine.power.model))));
+  g.fields.push_back(field("DIALECT", safe_token(estimate.dialect.name, 20)));
+  g.fields.push_back(field("REMOVAL", estimate.removal ? "simulated" : "off"));
+  return g;
+}
+
+// The constants of the model in use, named by their profile keys (the Pavanaskar ones without
+// their "pavanaskar." prefix): the per-axis KA/KB terms next to Zhou's MRR term.
+Group constants(const MachineProfile& machine) {
+  Group g{"CONST", {}};
+  std::vector<PowerParameter> used = model_parameters(machine.power.model);
+  if (std::find(used.begin(), used.end(), PowerParameter::ToolChange) == used.end())
+    used.push_back(PowerParameter::ToolChange);
+  for (PowerParameter p : used) {
+    std::string_view key = parameter_info(p).key;
+    constexpr std::string_view kPrefix = "pavanaskar.";
+    if (key.substr(0, kPrefix.size()) == kPrefix) key.remove_prefix(kPrefix.size());
+    g.fields.push_back(field(key, format_significant(get_parameter(machine.power, p), 4, 12)));
+  }
+  return g;
+}
+
+Group legend() {
+  Group g{"KEYS", {}};
+  for (std::string_view sentence :
+       {"T=block time, E=energy, P=mean power, MRR=mean removal rate mm3 per s,",
+        "CUM=time at block end, OP OPT OPE=operation from this tool change, its time, energy.",
+        "ncjoule strip removes every NCJ comment"}) {
+    // Split on spaces so that the legend wraps like any other group.
+    std::size_t begin = 0;
+    while (begin < sentence.size()) {
+      const std::size_t end = std::min(sentence.find(' ', begin), sentence.size());
+      g.fields.emplace_back(sentence.substr(begin, end - begin));
+      begin = end + 1;
+    }
+  }
+  return g;
+}
+
+std::size_t comment_length(std::size_t content_length, const WriteStyle& style) {
+  return style.comment.open.size() + content_length + 4 + 6 + style.comment.close.size();
+}
+
+void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>& lines) {
+  const std::string start = "NCJ " + group.label;
+  std::string content = start;
+  auto flush = [&] {
+    if (content.size() > start.size()) {
+      if (style.upper_case) to_upper(content);
+      lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
+    }
+    content = start;
+  };
+  for (const std::string& f : group.fields) {
+    if (comment_length(content.size() + 1 + f.size(), style) > style.max_line_length) flush();
+    // A field too long for a line of its own is left out rather than cut.
+    if (comment_length(content.size() + 1 + f.size(), style) > style.max_line_length) continue;
+    content += ' ';
+    content += f;
+  }
+  flush();
+}
+
+} // namespace
+
+std::vector<std::string> header_lines(const Estimate& estimate, const MachineProfile& machine,
+                                      const WriteStyle& style) {
+  std::vector<std::string> lines;
+  for (const Group& g : {totals(estimate), components(estimate), machine_used(estimate, machine),
+                         constants(machine), legend()})
+    wrap(g, style, lines);
+  return lines;
+}
+
+} // namespace ncjoule::annotation

@@ -1,0 +1,78 @@
+#include "number_format.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace ncjoule::annotation {
+
+std::string format_significant(double value, int digits, int max_decimals) {
+  if (!std::isfinite(value)) return "0";
+  int decimals = 0;
+  if (value != 0) {
+    const int magnitude = static_cast<int>(std::floor(std::log10(std::fabs(value))));
+    decimals = std::clamp(digits - 1 - magnitude, 0, max_decimals);
+  }
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  std::string out = text;
+  if (out.find('.') != std::string::npos) {
+    while (out.back() == '0')
+      out.pop_back();
+    if (out.back() == '.') out.pop_back();
+  }
+  if (out == "-0") out = "0";
+  return out;
+}
+
+std::string format_duration(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) seconds = 0;
+  // Below a minute, three significant digits (at most ms); 59.96 s would print as "60s", so the
+  // minute form starts where rounding reaches it.
+  if (seconds < 59.95) return format_significant(seconds, 3, 3) + "s";
+  const long whole = std::lround(seconds);
+  char text[64];
+  if (whole < 3600)
+    std::snprintf(text, sizeof text, "%ldm%02lds", whole / 60, whole % 60);
+  else
+    std::snprintf(text, sizeof text, "%ldh%02ldm%02lds", whole / 3600, whole / 60 % 60, whole % 60);
+  return text;
+}
+
+std::string format_si(double value, std::string_view unit) {
+  static constexpr const char* kPrefixes[] = {"", "k", "M", "G", "T"};
+  if (!std::isfinite(value)) value = 0;
+  int prefix = 0;
+  double scaled = value;
+  // Move up a prefix while the value, rounded to 3 significant digits, reaches 1000.
+  while (prefix < 4 && std::fabs(scaled) >= 999.5) {
+    scaled /= 1000;
+    ++prefix;
+  }
+  return format_significant(scaled, 3, 3) + kPrefixes[prefix] + std::string(unit);
+}
+
+void to_upper(std::string& text) {
+  for (char& c : text)
+    if (c >= 'a' && c <= 'z') c = char(c - 'a' + 'A');
+}
+
+std::string safe_token(std::string_view text, std::size_t max_length) {
+  std::string out;
+  for (char c : text) {
+    const bool keep = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                      c == '.' || c == ',' || c == '-';
+    if (keep)
+      out += c;
+    else if (!out.empty() && out.back() != '_')
+      out += '_';
+  }
+  while (!out.empty() && out.back() == '_')
+    out.pop_back();
+  if (out.size() > max_length) out.resize(max_length);
+  while (!out.empty() && out.back() == '_')
+    out.pop_back();
+  return out;
+}
+
+} // namespace ncjoule::annotation

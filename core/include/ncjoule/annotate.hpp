@@ -1,0 +1,45 @@
+// ncjoule stage 5: annotate. Writes a program back with its predictions as comments, and takes
+// them out again (docs/annotation.md describes the grammar).
+//
+// Every source line is kept byte for byte. A block that moves or takes time gets one comment
+// appended after its code and before any comment already on the line; a few header lines with
+// the totals go after a leading % line and an O-number line. Every inserted comment carries the
+// marker "NCJ" and a checksum of its own text, so that strip() removes exactly what annotate()
+// inserted and nothing a user wrote: strip(annotate(x)) == x, annotate(annotate(x)) ==
+// annotate(x). No I/O here: the command line reads and writes the files.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "ncjoule/estimate.hpp"
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/machine.hpp"
+
+namespace ncjoule {
+
+// Longest line (bytes, without its line ending) written when the dialect names no limit:
+// LinuxCNC's rs274 refuses a line of 253 bytes with its line ending ("Command too long").
+inline constexpr std::size_t kDefaultMaxLineLength = 250;
+
+struct AnnotateOptions {
+  bool header = true;              // the summary header after the % and O-number lines
+  bool operations = true;          // per-operation subtotals on tool-change lines
+  std::size_t max_line_length = 0; // 0: the dialect's, else kDefaultMaxLineLength
+};
+
+// The program in `source` with its predictions as comments. `estimate` must come from
+// estimate_program() on this same source. Annotations already in the source are replaced: the
+// result is the same as annotating strip(source.text).
+std::string annotate(const SourceFile& source, const Estimate& estimate,
+                     const MachineProfile& machine, const AnnotateOptions& options = {});
+
+// The text without ncjoule's annotations: inserted header lines (with their line endings) and
+// inserted comments (with the space before them) are removed; every other byte is kept.
+std::string strip(std::string_view text);
+
+// True when the text holds at least one annotation strip() would remove.
+bool has_annotations(std::string_view text);
+
+} // namespace ncjoule

@@ -1,0 +1,110 @@
+// Writing a command's output so that a failure never leaves a half-written file: the text goes
+// to a temporary file next to the target, which is renamed over the target only when every byte
+// is on disk. Used by the commands that rewrite programs (annotate, strip).
+#pragma once
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <string>
+#include <string_view>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace ncjoule::cli {
+
+namespace output_file_detail {
+
+inline std::string reason() {
+  return std::strerror(errno);
+}
+
+// Writes all of `text` to the descriptor; false on the first error (errno set).
+inline bool write_all(int fd, std::string_view text) {
+  while (!text.empty()) {
+    const ssize_t n = ::write(fd, text.data(), text.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    text.remove_prefix(static_cast<std::size_t>(n));
+  }
+  return true;
+}
+
+inline std::string directory_of(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  if (slash == std::string::npos) return ".";
+  if (slash == 0) return "/";
+  return path.substr(0, slash);
+}
+
+// Devices, pipes and terminals cannot be replaced by a rename: they are written in place.
+inline std::string write_in_place(const std::string& target, std::string_view text) {
+  const int fd = ::open(target.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) return "cannot open " + target + ": " + reason();
+  const bool written = write_all(fd, text);
+  const std::string why = written ? std::string() : reason();
+  if (::close(fd) != 0 && written) return "cannot write " + target + ": " + reason();
+  if (!written) return "cannot write " + target + ": " + why;
+  return {};
+}
+
+} // namespace output_file_detail
+
+// Writes `text` to `target` ("-": standard output). Returns an empty string on success, else
+// what went wrong; then the target is as it was and no temporary file is left behind.
+inline std::string write_output_file(const std::string& target, std::string_view text) {
+  using namespace output_file_detail;
+  if (target == "-") {
+    if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
+      return "cannot write to standard output: " + reason();
+    return {};
+  }
+  // A symbolic link keeps pointing where it did: the file it names is replaced.
+  std::string path = target;
+  struct stat info {};
+  if (::lstat(target.c_str(), &info) == 0 && S_ISLNK(info.st_mode)) {
+    if (char* real = ::realpath(target.c_str(), nullptr)) {
+      path = real;
+      std::free(real);
+    }
+  }
+  const bool exists = ::stat(path.c_str(), &info) == 0;
+  if (exists && S_ISDIR(info.st_mode)) return "cannot write " + target + ": it is a directory";
+  if (exists && !S_ISREG(info.st_mode)) return write_in_place(path, text);
+
+  const std::string directory = directory_of(path);
+  std::string base =
+      path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+  std::string temp = directory + "/." + base + ".ncjoule-XXXXXX";
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0)
+    return "cannot write " + target + ": cannot create a file in " + directory + ": " + reason();
+  std::string error;
+  // The new file gets the old one's permissions, or the usual ones for a new file (mkstemp
+  // makes it private).
+  mode_t mode = 0666;
+  if (exists) {
+    mode = info.st_mode & 07777;
+  } else {
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    mode &= ~mask;
+  }
+  if (!write_all(fd, text))
+    error = "cannot write " + target + ": " + reason();
+  else if (::fchmod(fd, mode) != 0)
+    error = "cannot set the permissions of " + temp + ": " + reason();
+  else if (::fsync(fd) != 0)
+    error = "cannot write " + target + ": " + reason();
+  if (::close(fd) != 0 && error.empty()) error = "cannot write " + target + ": " + reason();
+  if (error.empty() && ::rename(temp.c_str(), path.c_str()) != 0)
+    error = "cannot replace " + target + ": " + reason();
+  if (!error.empty()) ::unlink(temp.c_str());
+  return error;
+}
+
+} // namespace ncjoule::cli

@@ -49,6 +49,22 @@ Json block_json(const LineSummary& b) {
   return j;
 }
 
+Json operation_json(const OperationSummary& op) {
+  Json j;
+  j["name"] = op.name;
+  j["tool"] = op.tool;
+  j["line"] = op.line + 1; // 0 for what runs before the first tool change
+  j["start_s"] = op.start_s;
+  j["time_s"] = op.time_s;
+  j["removed_mm3"] = op.removed_mm3;
+  j["energy_j"] = op.energy_j;
+  j["sec_j_mm3"] = op.removed_mm3 > 0 ? op.energy_j / op.removed_mm3 : 0.0;
+  j["co2_kg"] = op.co2_kg;
+  j["cost"] = op.cost;
+  j["components"] = components_json(op.components_j);
+  return j;
+}
+
 Json diagnostic_json(const Diagnostic& d) {
   return Json{{"file", d.file},
               {"line", d.line},
@@ -57,9 +73,7 @@ Json diagnostic_json(const Diagnostic& d) {
               {"message", d.message}};
 }
 
-} // namespace
-
-std::string estimate_json(const Estimate& e, const MachineProfile& machine, int indent) {
+Json estimate_document(const Estimate& e, const MachineProfile& machine) {
   const RemovalResult* removal = e.removal ? &*e.removal : nullptr;
   const EnergyResult& energy = e.energy;
   const Timeline& timeline = e.timeline;
@@ -88,7 +102,28 @@ std::string estimate_json(const Estimate& e, const MachineProfile& machine, int 
   for (const Diagnostic& d : diagnostics)
     warnings.push_back(diagnostic_json(d));
   j["warnings"] = std::move(warnings);
-  return j.dump(indent);
+  return j;
+}
+
+} // namespace
+
+std::string estimate_json(const Estimate& e, const MachineProfile& machine, int indent) {
+  return estimate_document(e, machine).dump(indent);
+}
+
+std::string estimate_json(const Estimate& e, const SourceFile& source,
+                          const MachineProfile& machine, int indent) {
+  Json j = estimate_document(e, machine);
+  Json list = Json::array();
+  for (const OperationSummary& op : operations(source, e))
+    list.push_back(operation_json(op));
+  // After the totals, before the long list of blocks.
+  Json ordered;
+  for (auto& [key, value] : j.items()) {
+    if (key == "blocks") ordered["operations"] = list;
+    ordered[key] = value;
+  }
+  return ordered.dump(indent);
 }
 
 } // namespace ncjoule

@@ -1,6 +1,6 @@
-// `ncjoule estimate FILE --machine PROFILE [--dialect NAME] [--json]`: interprets the program,
-// plans it on the machine, and prints its time per block and in total (docs/json.md describes
-// the JSON form).
+// `ncjoule estimate FILE --machine PROFILE [--dialect NAME] [--json | --csv]`: interprets the
+// program, plans it on the machine, and prints its time, energy and cost in total, by component
+// and by operation (docs/json.md describes the JSON form, docs/report.md the CSV).
 //
 // The pipeline is estimate_program() (core/estimate) and the JSON is estimate_json()
 // (core/report); this file turns options into calls and prints.
@@ -20,6 +20,7 @@
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
+#include "progress.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -28,12 +29,15 @@ struct EstimateCliOptions {
   std::string file;
   std::string machine;
   std::string dialect;
-  std::string stock; // "box:..." or an STL file; empty: the box of the cutting moves
+  std::string stock;              // "box:..." or an STL file; empty: the box of the cutting moves
+  std::string job;                // job file (TOML): stock and tool table
+  std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
   std::string engine = "dexel";
   double grid_mm = 0;
   bool no_removal = false;
   std::optional<double> co2_kg_per_kwh, price_per_kwh;
   bool json = false;
+  bool csv = false;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -109,6 +113,25 @@ void print_summary(const SourceFile& source, const MachineProfile& machine,
   }
 }
 
+// Time, volume and energy per operation (from one tool change to the next).
+void print_operations(const std::vector<OperationSummary>& ops, const EnergyResult& energy) {
+  if (ops.empty()) return;
+  std::size_t width = 9;
+  for (const OperationSummary& op : ops)
+    width = std::max(width, std::min<std::size_t>(op.name.size(), 32));
+  std::printf("  by operation:\n");
+  std::printf("    %-*s %4s %5s %14s %10s %10s %7s\n", static_cast<int>(width), "operation", "tool",
+              "line", "time", "mm^3", "kJ", "share");
+  for (const OperationSummary& op : ops) {
+    std::printf("    %-*s %4s %5s %14s %10.0f %10.1f %6.1f%%\n", static_cast<int>(width),
+                op.name.substr(0, 32).c_str(),
+                op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
+                op.line >= 0 ? std::to_string(op.line + 1).c_str() : "-",
+                clock_text(op.time_s).c_str(), op.removed_mm3, op.energy_j / 1000,
+                energy.energy_j > 0 ? 100 * op.energy_j / energy.energy_j : 0.0);
+  }
+}
+
 // ---------------------------------------------------------------------------------------------
 
 int run_estimate(const EstimateCliOptions& o) {
@@ -128,6 +151,25 @@ int run_estimate(const EstimateCliOptions& o) {
     if (!options.dialect) return kUsage;
   }
   options.simulate_removal = !o.no_removal;
+  // Tools: the job file's, then the command line's, each replacing the one before (and the
+  // program's header comments) for the same number.
+  if (!o.job.empty()) {
+    std::vector<Diagnostic> job_diagnostics;
+    const auto job = read_job_file(o.job, job_diagnostics);
+    print_diagnostics(job_diagnostics);
+    if (!job) return kInputError;
+    if (job->stock) options.stock = job->stock;
+    options.tools = job->tools;
+  }
+  for (const std::string& text : o.tools) {
+    std::string error;
+    const auto tool = parse_tool_spec(text, &error);
+    if (!tool) {
+      std::cerr << "ncjoule: bad --tool '" << text << "': " << error << '\n';
+      return kUsage;
+    }
+    options.tools[tool->number] = *tool;
+  }
   if (!o.stock.empty()) {
     std::string error;
     options.stock = parse_stock_spec(o.stock, &error);
@@ -141,18 +183,25 @@ int run_estimate(const EstimateCliOptions& o) {
   options.energy.co2_kg_per_kwh = o.co2_kg_per_kwh;
   options.energy.price_per_kwh = o.price_per_kwh;
 
+  ProgressBar progress("estimating", 1);
+  progress.begin(0, source->path);
   const Estimate e = estimate_program(*source, machine, options);
+  progress.finish();
   if (e.failed) {
     print_diagnostics(e.diagnostics);
     std::cerr << "ncjoule: " << source->path
               << " cannot be estimated (see above); define the "
-                 "tools in the program's header comments, or use --no-removal\n";
+                 "tools in the program's header comments, a job file (--job) or with --tool, "
+                 "or use --no-removal\n";
     return kInputError;
   }
   if (o.json) {
-    std::cout << estimate_json(e, machine) << '\n';
+    std::cout << estimate_json(e, *source, machine) << '\n';
+  } else if (o.csv) {
+    std::cout << estimate_csv(e, *source);
   } else {
     print_summary(*source, machine, e.timeline, e.energy, e.lines.size());
+    print_operations(operations(*source, e), e.energy);
   }
   std::cout.flush();
   print_diagnostics(e.diagnostics);
@@ -163,8 +212,9 @@ int run_estimate(const EstimateCliOptions& o) {
 
 const Registration registration([](CLI::App& app, int& exit_code) {
   auto options = std::make_shared<EstimateCliOptions>();
-  CLI::App* cmd =
-      app.add_subcommand("estimate", "Predict the run time of a program on a machine, per block");
+  CLI::App* cmd = app.add_subcommand(
+      "estimate", "Predict a program's time, energy, SEC, CO2 and cost on a machine, by "
+                  "component, operation and block");
   cmd->add_option("file", options->file, "NC program (- for standard input)")->required();
   cmd->add_option("-m,--machine", options->machine, "Machine profile (.toml)")->required();
   cmd->add_option("--dialect", options->dialect,
@@ -173,6 +223,13 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_option("--stock", options->stock,
                   "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; "
                   "default: the bounding box of the cutting moves");
+  cmd->add_option("--job", options->job,
+                  "Job file (TOML): stock = \"box:...\" or stock_stl = \"part.stl\", and "
+                  "[[tool]] entries; --stock and --tool override it");
+  cmd->add_option("--tool", options->tools,
+                  "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
+                  "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
+      ->allow_extra_args(false); // one tool per --tool, so the program's file name is not taken
   cmd->add_option("--engine", options->engine, "Removal engine: dexel (default) or voxel")
       ->check(CLI::IsMember({"dexel", "voxel"}));
   cmd->add_option("--grid", options->grid_mm,
@@ -182,7 +239,11 @@ const Registration registration([](CLI::App& app, int& exit_code) {
                 "Do not simulate material removal (no tools needed; cutting power is zero)");
   cmd->add_option("--co2", options->co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
   cmd->add_option("--price", options->price_per_kwh, "Price per kWh (overrides the profile)");
-  cmd->add_flag("--json", options->json, "Print the per-block results as JSON (docs/json.md)");
+  auto* json = cmd->add_flag("--json", options->json,
+                             "Print the totals, operations and every block as JSON (docs/json.md)");
+  cmd->add_flag("--csv", options->csv,
+                "Print one CSV row per block, with a header row (docs/report.md)")
+      ->excludes(json);
   cmd->callback([options, &exit_code] { exit_code = run_estimate(*options); });
 });
 

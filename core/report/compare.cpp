@@ -1,0 +1,120 @@
+// Ranking alternatives of the same part by energy, with their differences to the best, so a
+// planner sees which costs less and, component by component, why.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "ncjoule/report.hpp"
+
+namespace ncjoule {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+double percent_of(double diff, double base) {
+  return base != 0 ? 100 * diff / base : 0.0;
+}
+
+Json components_json(const ComponentValues& values) {
+  Json j = Json::object();
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+    j[std::string(component_name(PowerComponent(i)))] = values[i];
+  return j;
+}
+
+} // namespace
+
+ProgramTotals program_totals(const Estimate& e) {
+  ProgramTotals t;
+  t.file = e.file;
+  t.time_s = e.timeline.total_s;
+  t.energy_j = e.energy.energy_j;
+  t.removed_mm3 = e.energy.removed_mm3;
+  t.sec_j_mm3 = e.energy.sec_j_mm3;
+  t.co2_kg = e.energy.co2_kg;
+  t.cost = e.energy.cost;
+  t.currency = e.energy.currency;
+  t.components_j = e.energy.components_j;
+  return t;
+}
+
+std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs) {
+  std::stable_sort(programs.begin(), programs.end(),
+                   [](const ProgramTotals& a, const ProgramTotals& b) {
+                     if (a.energy_j != b.energy_j) return a.energy_j < b.energy_j;
+                     if (a.time_s != b.time_s) return a.time_s < b.time_s;
+                     return a.file < b.file;
+                   });
+  std::vector<RankedProgram> ranked;
+  for (std::size_t i = 0; i < programs.size(); ++i) {
+    RankedProgram r;
+    r.rank = static_cast<int>(i) + 1;
+    r.totals = programs[i];
+    const ProgramTotals& best = programs.front();
+    r.time_diff_s = r.totals.time_s - best.time_s;
+    r.time_diff_pct = percent_of(r.time_diff_s, best.time_s);
+    r.energy_diff_j = r.totals.energy_j - best.energy_j;
+    r.energy_diff_pct = percent_of(r.energy_diff_j, best.energy_j);
+    r.cost_diff = r.totals.cost - best.cost;
+    r.co2_diff_kg = r.totals.co2_kg - best.co2_kg;
+    for (std::size_t c = 0; c < kPowerComponentCount; ++c)
+      r.component_diff_j[c] = r.totals.components_j[c] - best.components_j[c];
+    ranked.push_back(std::move(r));
+  }
+  return ranked;
+}
+
+std::string explain_difference(const RankedProgram& r, std::size_t max_components) {
+  if (r.rank == 1) return {};
+  std::vector<std::size_t> order;
+  for (std::size_t c = 0; c < kPowerComponentCount; ++c)
+    if (std::abs(r.component_diff_j[c]) > 0.05) order.push_back(c); // under 0.05 J is noise
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::abs(r.component_diff_j[a]) > std::abs(r.component_diff_j[b]);
+  });
+  if (order.size() > max_components) order.resize(max_components);
+  std::string text;
+  for (std::size_t c : order) {
+    char value[64];
+    std::snprintf(value, sizeof value, "%+.1f kJ", r.component_diff_j[c] / 1000);
+    text +=
+        (text.empty() ? "" : ", ") + std::string(component_name(PowerComponent(c))) + " " + value;
+  }
+  return text;
+}
+
+std::string comparison_json(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
+                            int indent) {
+  Json j;
+  j["machine"] = Json{{"name", machine.name}, {"file", machine.source_path}};
+  j["ranked_by"] = "energy_j";
+  Json list = Json::array();
+  for (const RankedProgram& r : ranked) {
+    const ProgramTotals& t = r.totals;
+    Json p;
+    p["rank"] = r.rank;
+    p["file"] = t.file;
+    p["time_s"] = t.time_s;
+    p["energy_j"] = t.energy_j;
+    p["removed_mm3"] = t.removed_mm3;
+    p["sec_j_mm3"] = t.sec_j_mm3;
+    p["co2_kg"] = t.co2_kg;
+    p["cost"] = t.cost;
+    p["currency"] = t.currency;
+    p["components"] = components_json(t.components_j);
+    p["why"] = explain_difference(r);
+    p["vs_best"] = Json{{"time_s", r.time_diff_s},
+                        {"time_pct", r.time_diff_pct},
+                        {"energy_j", r.energy_diff_j},
+                        {"energy_pct", r.energy_diff_pct},
+                        {"cost", r.cost_diff},
+                        {"co2_kg", r.co2_diff_kg},
+                        {"components", components_json(r.component_diff_j)}};
+    list.push_back(std::move(p));
+  }
+  j["programs"] = std::move(list);
+  return j.dump(indent);
+}
+
+} // namespace ncjoule

@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""`ncjoule compare` on Pavanaskar's X- vs Y-direction facing of the same 100 x 60 face (D20 end
+mill, 10 mm stepover, F800) on the Haas VF-0 profile: the direction the profile's axis constants imply wins, the component split
+names the axis terms as the reason, and the axis energies agree with the constants worked out by
+hand. Also: --csv, --help of every subcommand, the progress bar (quiet unless on a terminal)."""
+import csv
+import io
+import json
+import os
+import pty
+import subprocess
+import sys
+import tomllib
+
+NCJOULE = os.environ["NCJOULE"]
+ROOT = os.environ["NCJOULE_SOURCE_DIR"]
+PROGRAMS = os.path.join(ROOT, "samples/programs")
+HAAS = os.path.join(ROOT, "samples/machines/haas-vf0-pavanaskar2014.toml")
+X = os.path.join(PROGRAMS, "pavanaskar-facing-x.ngc")
+Y = os.path.join(PROGRAMS, "pavanaskar-facing-y.ngc")
+failures = []
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def run(*args, **kw):
+    return subprocess.run([NCJOULE, *args], capture_output=True, text=True, **kw)
+
+
+def sidecar_stock(program):
+    with open(os.path.splitext(program)[0] + ".stock") as f:
+        return f.read().strip()
+
+
+stock = sidecar_stock(X)
+check(stock == sidecar_stock(Y), "both alternatives start from the same stock")
+with open(HAAS, "rb") as f:
+    axes = tomllib.load(f)["power"]["pavanaskar"]
+ax, ay = axes["x"], axes["y"]
+
+r = run("compare", Y, X, "--machine", HAAS, "--stock", stock, "--json")
+check(r.returncode == 0, f"compare --json exits 0 ({r.stderr[:200]!r})")
+doc = json.loads(r.stdout)
+progs = doc["programs"]
+by_name = {os.path.basename(p["file"]): p for p in progs}
+px, py = by_name["pavanaskar-facing-x.ngc"], by_name["pavanaskar-facing-y.ngc"]
+check([p["rank"] for p in progs] == [1, 2], "ranks 1, 2")
+check(progs[0]["energy_j"] <= progs[1]["energy_j"], "cheapest energy first")
+
+for p in (px, py):
+    check(abs(p["removed_mm3"] - 6000) < 0.002 * 6000, f"removes 100*60*1 = 6000 mm^3 ({p['removed_mm3']:.1f})")
+
+# The profile's X constants are lower than Y's (Table 4.1), so facing along X must be cheaper.
+x_lighter = ax["move_ka_w"] < ay["move_ka_w"] and ax["cut_ka_w"] < ay["cut_ka_w"]
+check(x_lighter, "the Haas profile's X move and cut constants are below Y's")
+expected_best = px if x_lighter else py
+check(progs[0]["file"] == expected_best["file"],
+      f"the direction the constants favour wins: {os.path.basename(progs[0]['file'])}")
+loser = py if x_lighter else px
+d = loser["vs_best"]
+check(abs(d["energy_j"] - (loser["energy_j"] - expected_best["energy_j"])) < 1e-6 * loser["energy_j"],
+      "vs_best.energy_j is the difference to the best")
+check(abs(d["energy_pct"] - 100 * d["energy_j"] / expected_best["energy_j"]) < 1e-9 * 100,
+      "vs_best.energy_pct is relative to the best")
+check(d["components"]["axis_y"] > 0 and d["components"]["axis_x"] < 0,
+      "the component split shows the axis terms as the reason (axis_y up, axis_x down)")
+check(abs(sum(d["components"].values()) - d["energy_j"]) < 1e-6 * loser["energy_j"],
+      "component differences add up to the energy difference")
+diffs = d["components"]
+check(max(diffs, key=lambda k: diffs[k]) == "axis_y", f"axis_y is the largest extra cost: {loser['why']!r}")
+check(loser["why"].startswith("axis_y"), f"'why' names axis_y first: {loser['why']!r}")
+
+# By hand: the long passes run 124 mm (X: 7 of them) or 84 mm (Y: 11) at F800 = 13.33 mm/s;
+# only they and the first rapid move that axis. Its power is KA_move + KB_move * 13.33 mm/s
+# (acceleration to 13.33 mm/s at 1 m/s^2 takes 13 ms).
+v = 800 / 60
+for p, axis, k, passes, run_mm in [(px, "axis_x", ax, 7, 124), (py, "axis_y", ay, 11, 84)]:
+    t_pass = passes * run_mm / v
+    expect = (k["move_ka_w"] + k["move_kb_w_per_mm_s"] * v) * t_pass
+    got = p["components"][axis]
+    check(abs(got - expect) < 0.02 * expect,
+          f"{os.path.basename(p['file'])}: {axis} = (KA + KB*v) * {t_pass:.1f} s = {expect:.0f} J within 2% (got {got:.0f})")
+
+# The table for people.
+r = run("compare", X, Y, "--machine", HAAS, "--stock", stock)
+check(r.returncode == 0 and "best" in r.stdout and "kJ more than" in r.stdout and "axis_y" in r.stdout,
+      "the text table ranks, compares and names the reason")
+r = run("compare", X, "--machine", HAAS)
+check(r.returncode == 1 and "two or more" in r.stderr, "one program: exit 1, says why")
+r = run("compare", X, os.path.join(PROGRAMS, "missing.ngc"), "--machine", HAAS)
+check(r.returncode == 2 and "missing.ngc" in r.stderr and r.stdout == "", "missing file: exit 2, named, no table")
+
+# estimate --csv: one row per block, header, numbers that add up.
+r = run("estimate", X, "--machine", HAAS, "--stock", stock, "--csv")
+rows = list(csv.DictReader(io.StringIO(r.stdout)))
+j = json.loads(run("estimate", X, "--machine", HAAS, "--stock", stock, "--json").stdout)
+check(r.returncode == 0 and len(rows) == len(j["blocks"]), f"--csv has one row per block ({len(rows)})")
+check(abs(sum(float(x["energy_j"]) for x in rows) - j["energy_j"]) < 1e-6 * j["energy_j"],
+      "--csv energies add up to the total")
+check(all(x["operation"] == "FACE1" for x in rows if x["kind"] == "feed"),
+      "--csv names each block's operation")
+check([o["name"] for o in j["operations"]] == ["FACE1"], "JSON operations: FACE1 (the post's comment)")
+r = run("estimate", X, "--machine", HAAS, "--stock", stock)
+check("by operation" in r.stdout and "FACE1" in r.stdout and "kWh" in r.stdout and "kJ" in r.stdout,
+      "human summary: kWh, kJ and the operation split")
+
+# --help for every registered subcommand.
+top = run("--help").stdout
+subs = [line.split()[0] for line in top.split("Subcommands:")[1].splitlines() if line.startswith("  ") and line.split()]
+subs = [s for s in subs if s.isidentifier()]
+check({"estimate", "compare", "report"} <= set(subs), f"subcommands listed: {subs}")
+for s in subs:
+    h = run(s, "--help")
+    options = [l for l in h.stdout.splitlines() if l.strip().startswith("-")]
+    described = all(len(l.split(None, 1)) > 1 for l in options)
+    check(h.returncode == 0 and "Usage" in h.stdout and options and described,
+          f"{s} --help: usage and every option described")
+
+# Progress: nothing on a pipe; a bar on a terminal, erased at the end.
+r = run("estimate", X, "--machine", HAAS, "--stock", stock)
+check("\r" not in r.stderr and "\033[" not in r.stderr, "no progress bar when stderr is a pipe")
+master, slave = pty.openpty()
+env = dict(os.environ, NCJOULE_PROGRESS_DELAY_MS="0", TERM="xterm")
+p = subprocess.Popen([NCJOULE, "compare", X, Y, "--machine", HAAS, "--stock", stock],
+                     stdout=subprocess.DEVNULL, stderr=slave, env=env)
+p.wait()
+os.close(slave)
+seen = b""
+while True:
+    try:
+        chunk = os.read(master, 4096)
+    except OSError:
+        break
+    if not chunk:
+        break
+    seen += chunk
+os.close(master)
+check(b"estimating [" in seen and seen.endswith(b"\r\x1b[K"),
+      f"progress bar on a terminal, erased at the end ({seen[-60:]!r})")
+
+print(f"{len(failures)} failed")
+sys.exit(1 if failures else 0)

@@ -1,0 +1,149 @@
+#!/usr/bin/env python3
+"""`ncjoule report` in a real headless Chromium: the page is self-contained (no external URL),
+loads without script errors, its charts have data, and a screenshot of it is not blank.
+
+Exits 77 (ctest SKIP_RETURN_CODE) when chromium is not installed."""
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import zlib
+
+NCJOULE = os.environ["NCJOULE"]
+ROOT = os.environ["NCJOULE_SOURCE_DIR"]
+PROGRAMS = os.path.join(ROOT, "samples/programs")
+HAAS = os.path.join(ROOT, "samples/machines/haas-vf0-pavanaskar2014.toml")
+SKIP = 77
+failures = []
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def png_pixels(path):
+    """Decodes an 8-bit RGB/RGBA non-interlaced PNG (what Chromium writes): (width, height, rows)."""
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "not a PNG"
+    pos, idat = 8, b""
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, color, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            assert depth == 8 and color in (2, 6) and interlace == 0, "unexpected PNG format"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    bpp = 3 if color == 2 else 4
+    raw = zlib.decompress(idat)
+    stride = width * bpp
+    rows, prev = [], bytearray(stride)
+    for y in range(height):
+        filt = raw[y * (stride + 1)]
+        line = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b = prev[i]
+            c = prev[i - bpp] if i >= bpp else 0
+            if filt == 1:
+                line[i] = (line[i] + a) & 255
+            elif filt == 2:
+                line[i] = (line[i] + b) & 255
+            elif filt == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif filt == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return width, height, bpp, rows
+
+
+chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+if not chromium:
+    print("SKIP: chromium is not installed (scripts/setup.sh installs it); the HTML report was not checked in a browser")
+    sys.exit(SKIP)
+
+with tempfile.TemporaryDirectory() as tmp:
+    page = os.path.join(tmp, "report.html")
+    x = os.path.join(PROGRAMS, "pavanaskar-facing-x.ngc")
+    y = os.path.join(PROGRAMS, "pavanaskar-facing-y.ngc")
+    with open(os.path.splitext(x)[0] + ".stock") as f:
+        stock = f.read().strip()
+    r = subprocess.run([NCJOULE, "report", x, y, "--machine", HAAS, "--stock", stock, "-o", page],
+                       capture_output=True, text=True)
+    check(r.returncode == 0 and os.path.exists(page), f"report written ({r.stderr.strip()[:200]!r})")
+    check(not [n for n in os.listdir(tmp) if n != "report.html"], "no temporary file left behind")
+    with open(page, encoding="utf-8") as f:
+        html = f.read()
+    check(not re.search(r"(https?:)?//[a-z0-9.-]+\.[a-z]{2,}/", html, re.I),
+          "no external URL anywhere in the page")
+    check(not re.search(r"<(script|img|iframe)[^>]*\bsrc=|<link\b", html, re.I),
+          "no script, image or style sheet loaded from elsewhere")
+    for title in ["Comparison", "Power over time", "Material removal rate over time",
+                  "Energy per operation, by component", "Energy per component",
+                  "Energy per program, by component"]:
+        check(title in html, f"section '{title}'")
+
+    # A page that cannot be written leaves no file and says why, with exit 3.
+    bad = os.path.join(tmp, "no-such-dir", "r.html")
+    r = subprocess.run([NCJOULE, "report", x, "--machine", HAAS, "--stock", stock, "-o", bad],
+                       capture_output=True, text=True)
+    check(r.returncode == 3 and "no-such-dir" in r.stderr, f"unwritable output: exit 3 ({r.returncode})")
+
+    base = [chromium, "--headless", "--no-sandbox", "--disable-gpu",
+            "--disable-background-networking", "--disable-component-update", "--disable-sync",
+            "--no-first-run", "--hide-scrollbars"]
+    url = "file://" + page
+    with tempfile.TemporaryDirectory() as profile:
+        r = subprocess.run(base + ["--user-data-dir=" + profile, "--enable-logging=stderr", "--v=0",
+                                   "--virtual-time-budget=5000", "--dump-dom", url],
+                           capture_output=True, text=True, timeout=180)
+    dom, log = r.stdout, r.stderr
+    check(r.returncode == 0 and "<svg" in dom, f"chromium loaded the page (exit {r.returncode})")
+    errors = [l for l in log.splitlines() if "Uncaught" in l or ("CONSOLE" in l and "rror" in l)]
+    check(not errors, f"no script errors in the console {errors[:3]}")
+    charts = re.findall(r'<svg class="time-chart"', dom)
+    ready = re.search(r'data-charts-ready="(\d+)"', dom)
+    check(ready is not None and int(ready.group(1)) == len(charts) == 5,
+          f"the script set up all {len(charts)} time charts (2 programs x 2 + the comparison)")
+    lines = re.findall(r'<path class="line"[^>]*\sd="([^"]*)"', dom)
+    points = [len(re.findall(r"[ML]", d)) for d in lines]
+    check(len(lines) == 6 and min(points) >= 20, f"every line has points: {points}")
+    check(max(points) <= 2000, "at most 2000 points per line")
+    bars = re.findall(r'<rect class="bar"', dom)
+    check(len(bars) >= 10, f"bar charts have bars ({len(bars)})")
+    check("pavanaskar-facing-x.ngc" in dom and "best" in dom, "the comparison names the best")
+
+    shot = os.path.join(tmp, "report.png")
+    with tempfile.TemporaryDirectory() as profile:
+        r = subprocess.run(base + ["--user-data-dir=" + profile, "--screenshot=" + shot,
+                                   "--window-size=1280,1800", "--virtual-time-budget=5000", url],
+                           capture_output=True, text=True, timeout=180)
+    check(os.path.exists(shot) and os.path.getsize(shot) > 20000,
+          f"screenshot written ({os.path.getsize(shot) if os.path.exists(shot) else 0} bytes)")
+    if os.path.exists(shot):
+        width, height, bpp, rows = png_pixels(shot)
+        check((width, height) == (1280, 1800), f"screenshot is 1280 x 1800 ({width} x {height})")
+        colours = set()
+        for row in rows[::10]:
+            for i in range(0, len(row), bpp * 10):
+                colours.add(row[i:i + 3])
+        check(len(colours) > 50, f"the screenshot is not blank ({len(colours)} colours sampled)")
+        # The header band is dark and the page below it light: the style sheet applied.
+        check(sum(rows[20][:3]) < 200 and sum(rows[1000][3 * 5:3 * 5 + 3]) > 600,
+              "dark header band over a light page")
+        keep = os.environ.get("NCJOULE_KEEP_SCREENSHOT")
+        if keep:
+            shutil.copy(shot, keep)
+
+print(f"{len(failures)} failed")
+sys.exit(1 if failures else 0)

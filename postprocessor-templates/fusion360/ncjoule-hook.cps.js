@@ -1,0 +1,349 @@
+/*
+  ncjoule hook for Autodesk post processors (Fusion, Inventor CAM, HSM): append this whole file
+  to the end of a vendor .cps post. After the post has written its program(s), the hook runs
+
+      ncjoule annotate <file> --machine <profile> --in-place [--stock <text>] [<extra arguments>]
+
+  on every NC file the post wrote, so each block carries its predicted time, MRR, power and
+  energy as a comment. See README.md next to this file.
+
+  The hook never makes a post fail: when ncjoule is missing, turned off, not configured or fails,
+  the post's own files stay exactly as the post wrote them and the post log says why (warning()).
+
+  What it adds to the post:
+  - five properties (kept if the post already has properties of the same names):
+      ncjouleEnable     annotate the output (on/off)
+      ncjoulePath       the ncjoule program ("ncjoule" finds it on the PATH)
+      ncjouleMachine    the machine profile (.toml); a relative path is looked up next to the post
+      ncjouleStock      the stock, as ncjoule's --stock text (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX
+                        or an .stl file); empty: the box of the cutting moves
+      ncjouleArguments  further arguments for `ncjoule annotate` (e.g. --dialect fanuc)
+  - an onTerminate() that first runs the post's own onTerminate() (if it has one) and then
+    annotates the main output (getOutputPath()) and every other file of the same extension the
+    post opened with redirectToFile() or new TextFile(path, true, ...) (subprograms, one file per
+    operation or tool). A post that writes files some other way can name them with
+    ncjouleAddOutputFile(path).
+*/
+
+var ncjouleHookVersion = "1";
+
+// The properties the hook adds, in the post engine's property-object form.
+var ncjouleHookPropertyDefinitions = {
+  ncjouleEnable: {
+    title: "ncjoule: annotate output",
+    description: "Annotate the posted program with ncjoule's predicted time, MRR, power and energy per block.",
+    type: "boolean",
+    value: true,
+    scope: "post"
+  },
+  ncjoulePath: {
+    title: "ncjoule: program",
+    description: "Path of the ncjoule program; 'ncjoule' runs the one on the PATH.",
+    type: "string",
+    value: "ncjoule",
+    scope: "post"
+  },
+  ncjouleMachine: {
+    title: "ncjoule: machine profile",
+    description: "Machine profile (.toml) to predict with; a relative path is looked up in the post's folder.",
+    type: "string",
+    value: "",
+    scope: "post"
+  },
+  ncjouleStock: {
+    title: "ncjoule: stock",
+    description: "Stock as ncjoule's --stock text: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an .stl file. Empty: the box of the cutting moves.",
+    type: "string",
+    value: "",
+    scope: "post"
+  },
+  ncjouleArguments: {
+    title: "ncjoule: extra arguments",
+    description: "Further arguments for 'ncjoule annotate', e.g. --dialect fanuc.",
+    type: "string",
+    value: "",
+    scope: "post"
+  }
+};
+
+// Adds the hook's properties to the post's, in whichever of the two property styles the post
+// uses, never replacing one the post already has.
+function ncjouleInstallProperties() {
+  if (typeof properties != "object" || properties == null) {
+    properties = {};
+  }
+  var modern = true; // property objects with a value field
+  var anyProperty = false;
+  for (var existing in properties) {
+    anyProperty = true;
+    var p = properties[existing];
+    modern = (p != null && typeof p == "object" && ("value" in p));
+    break;
+  }
+  if (!anyProperty && typeof propertyDefinitions == "object" && propertyDefinitions != null) {
+    modern = false;
+  }
+  var grouped = (typeof groupDefinitions == "object" && groupDefinitions != null);
+  if (grouped && !("ncjoule" in groupDefinitions)) {
+    groupDefinitions.ncjoule = {title: "ncjoule", description: "Energy and time annotation", collapsed: true, order: 90};
+  }
+  for (var name in ncjouleHookPropertyDefinitions) {
+    if (name in properties) {
+      continue; // the post's own setting wins
+    }
+    var d = ncjouleHookPropertyDefinitions[name];
+    if (modern) {
+      var copy = {};
+      for (var key in d) {
+        copy[key] = d[key];
+      }
+      if (grouped) {
+        copy.group = "ncjoule";
+      }
+      properties[name] = copy;
+    } else {
+      properties[name] = d.value;
+      if (typeof propertyDefinitions == "object" && propertyDefinitions != null && !(name in propertyDefinitions)) {
+        propertyDefinitions[name] = {title: d.title, description: d.description, type: d.type};
+      }
+    }
+  }
+}
+ncjouleInstallProperties();
+
+// The current value of a property, whichever way the post engine keeps it.
+function ncjouleProperty(name) {
+  var value;
+  if (typeof getProperty == "function") {
+    try {
+      value = getProperty(name);
+    } catch (e) {
+      value = undefined;
+    }
+  }
+  if (value === undefined && typeof properties == "object" && properties != null && (name in properties)) {
+    value = properties[name];
+  }
+  if (value != null && typeof value == "object" && ("value" in value)) {
+    value = value.value;
+  }
+  if (value === undefined) {
+    value = ncjouleHookPropertyDefinitions[name].value;
+  }
+  return value;
+}
+
+function ncjouleWarning(message) {
+  if (typeof warning == "function") {
+    warning("ncjoule: " + message);
+  } else if (typeof log == "function") {
+    log("ncjoule: " + message);
+  }
+}
+
+function ncjouleLog(message) {
+  if (typeof log == "function") {
+    log("ncjoule: " + message);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The files the post writes
+// ---------------------------------------------------------------------------------------------
+
+var ncjouleOutputFiles = [];
+
+function ncjouleAddOutputFile(path) {
+  if (!path) {
+    return;
+  }
+  path = String(path);
+  for (var i = 0; i < ncjouleOutputFiles.length; ++i) {
+    if (ncjouleOutputFiles[i] == path) {
+      return;
+    }
+  }
+  ncjouleOutputFiles.push(path);
+}
+
+// Every redirectToFile(path) the post makes is recorded, then done as before.
+if (typeof redirectToFile == "function" && !redirectToFile.ncjouleWrapped) {
+  var ncjouleOriginalRedirectToFile = redirectToFile;
+  try {
+    redirectToFile = function (path) {
+      ncjouleAddOutputFile(path);
+      return ncjouleOriginalRedirectToFile.apply(this, arguments);
+    };
+    redirectToFile.ncjouleWrapped = true;
+  } catch (e) {
+    ncjouleLog("cannot follow redirectToFile(); only the main output is annotated");
+  }
+}
+
+// Every TextFile the post opens for writing is recorded (posts that write subprograms to files
+// of their own), then opened as before.
+if (typeof TextFile == "function" && !TextFile.ncjouleWrapped) {
+  var ncjouleOriginalTextFile = TextFile;
+  try {
+    TextFile = function (path, write) {
+      if (write) {
+        ncjouleAddOutputFile(path);
+      }
+      var args = Array.prototype.slice.call(arguments);
+      return new (Function.prototype.bind.apply(ncjouleOriginalTextFile, [null].concat(args)))();
+    };
+    TextFile.prototype = ncjouleOriginalTextFile.prototype;
+    TextFile.ncjouleWrapped = true;
+  } catch (e) {
+    ncjouleLog("cannot follow TextFile; files the post writes that way are not annotated");
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Running ncjoule
+// ---------------------------------------------------------------------------------------------
+
+function ncjouleExtensionOf(path) {
+  var name = String(path).replace(/^.*[\\\/]/, "");
+  var dot = name.lastIndexOf(".");
+  return dot > 0 ? name.substring(dot + 1).toLowerCase() : "";
+}
+
+function ncjouleIsFile(path) {
+  try {
+    if (typeof FileSystem != "undefined" && FileSystem && typeof FileSystem.isFile == "function") {
+      return FileSystem.isFile(path);
+    }
+  } catch (e) {
+    return false;
+  }
+  return true; // cannot tell: let ncjoule say
+}
+
+function ncjouleHasFolder(path) {
+  return /[\\\/]/.test(path);
+}
+
+function ncjouleQuote(text) {
+  return "\"" + String(text).replace(/"/g, "") + "\"";
+}
+
+// The profile as given, or next to the post when the given path is relative and found there.
+function ncjouleResolveProfile(profile) {
+  if (/^([A-Za-z]:)?[\\\/]/.test(profile) || ncjouleIsFile(profile) && ncjouleHasFolder(profile)) {
+    return profile;
+  }
+  try {
+    if (typeof getConfigurationFolder == "function" && typeof FileSystem != "undefined" &&
+        typeof FileSystem.getCombinedPath == "function") {
+      var nextToPost = FileSystem.getCombinedPath(getConfigurationFolder(), profile);
+      if (FileSystem.isFile(nextToPost)) {
+        return nextToPost;
+      }
+    }
+  } catch (e) {
+    // keep the path as given
+  }
+  return profile;
+}
+
+var ncjouleExitReasons = {
+  1: "bad command line (check the extra arguments)",
+  2: "bad input: the program, the machine profile or the stock could not be read or has errors",
+  3: "the annotated file could not be written",
+  4: "internal error"
+};
+
+// Annotates one file in place; true when it was annotated. Never throws.
+function ncjouleAnnotateFile(program, profile, file) {
+  var args = "annotate " + ncjouleQuote(file) + " --machine " + ncjouleQuote(profile) + " --in-place";
+  var stock = String(ncjouleProperty("ncjouleStock") || "");
+  if (stock) {
+    args += " --stock " + ncjouleQuote(stock);
+  }
+  var extra = String(ncjouleProperty("ncjouleArguments") || "");
+  if (extra) {
+    args += " " + extra;
+  }
+  var code;
+  try {
+    var folder = "";
+    if (typeof FileSystem != "undefined" && typeof FileSystem.getFolderPath == "function") {
+      folder = FileSystem.getFolderPath(file);
+    }
+    code = execute(program, args, true, folder);
+  } catch (e) {
+    ncjouleWarning("could not run '" + program + "' (" + e + "); " + file + " is as the post wrote it");
+    return false;
+  }
+  if (code !== 0 && code !== undefined && code !== null) {
+    ncjouleWarning("'" + program + " " + args + "' exited with " + code +
+      (ncjouleExitReasons[code] ? " (" + ncjouleExitReasons[code] + ")" : "") +
+      "; " + file + " is as the post wrote it");
+    return false;
+  }
+  ncjouleLog("annotated " + file);
+  return true;
+}
+
+function ncjouleAnnotateOutputs() {
+  if (!ncjouleProperty("ncjouleEnable")) {
+    ncjouleLog("annotation is off (property ncjouleEnable)");
+    return;
+  }
+  try {
+    var program = String(ncjouleProperty("ncjoulePath") || "ncjoule");
+    var profile = String(ncjouleProperty("ncjouleMachine") || "");
+    if (!profile) {
+      ncjouleWarning("no machine profile set (property ncjouleMachine); the output is not annotated");
+      return;
+    }
+    if (typeof execute != "function") {
+      ncjouleWarning("this post engine cannot run programs (no execute()); the output is not annotated");
+      return;
+    }
+    if (ncjouleHasFolder(program) && !ncjouleIsFile(program)) {
+      ncjouleWarning("ncjoule not found at '" + program + "' (property ncjoulePath); the output is not annotated");
+      return;
+    }
+    profile = ncjouleResolveProfile(profile);
+    if (ncjouleHasFolder(profile) && !ncjouleIsFile(profile)) {
+      ncjouleWarning("machine profile '" + profile + "' not found (property ncjouleMachine); the output is not annotated");
+      return;
+    }
+    var files = [];
+    var main = (typeof getOutputPath == "function") ? getOutputPath() : "";
+    if (main) {
+      files.push(String(main));
+    }
+    var wanted = main ? ncjouleExtensionOf(main) : ((typeof extension == "string") ? extension.toLowerCase() : "");
+    for (var i = 0; i < ncjouleOutputFiles.length; ++i) {
+      var f = ncjouleOutputFiles[i];
+      if (f == main) {
+        continue;
+      }
+      if (wanted && ncjouleExtensionOf(f) != wanted) {
+        continue; // a log, a setup sheet, a tool list: not a program
+      }
+      files.push(f);
+    }
+    for (var j = 0; j < files.length; ++j) {
+      if (!ncjouleIsFile(files[j])) {
+        ncjouleWarning(files[j] + " does not exist (anymore); not annotated");
+        continue;
+      }
+      ncjouleAnnotateFile(program, profile, files[j]);
+    }
+  } catch (e) {
+    ncjouleWarning("annotation skipped: " + e);
+  }
+}
+
+// onTerminate runs once the post has closed its output files: the post's own first, then ncjoule.
+var ncjoulePreviousOnTerminate = (typeof onTerminate == "function") ? onTerminate : undefined;
+onTerminate = function () {
+  if (ncjoulePreviousOnTerminate) {
+    ncjoulePreviousOnTerminate.apply(this, arguments);
+  }
+  ncjouleAnnotateOutputs();
+};

@@ -1,0 +1,153 @@
+"""The LinuxCNC [FILTER] program (postprocessor-templates/linuxcnc/ncjoule-filter) by the filter
+contract: LinuxCNC runs it as `sh -c "PROGRAM 'FILE'"` with stdin closed, takes the G-code from
+stdout, reads FILTER_PROGRESS=N lines on stderr, and treats a non-zero exit as a failure (stderr
+is the message). The original file is never modified.
+
+Usage: NCJOULE=path/to/ncjoule NCJOULE_SOURCE_DIR=repo python3 linuxcnc_filter_test.py
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.environ.get("NCJOULE_SOURCE_DIR",
+                      os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))
+NCJOULE = os.path.abspath(os.environ.get("NCJOULE", "ncjoule"))
+FILTER = os.path.join(ROOT, "postprocessor-templates", "linuxcnc", "ncjoule-filter")
+MACHINE = os.path.join(ROOT, "samples", "machines", "zhou2017-anziani2025.toml")
+SAMPLE = os.path.join(ROOT, "samples", "programs", "anziani-table2-5.ngc")
+with open(os.path.join(ROOT, "samples", "programs", "anziani-table2-5.stock")) as f:
+    STOCK = f.read().strip()
+
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAIL " + message)
+    return condition
+
+
+def q(text):
+    return "'" + text.replace("'", "'\\''") + "'"
+
+
+def run_filter(program, file, env=None):
+    """Like LinuxCNC: sh -c "PROGRAM 'FILE'" with stdin closed."""
+    full_env = dict(os.environ)
+    for k in ("NCJOULE", "NCJOULE_MACHINE", "NCJOULE_STOCK", "NCJOULE_ARGS", "INI_FILE_NAME",
+              "NCJOULE_DISABLE", "NCJOULE_FILTER_PASSTHROUGH"):
+        full_env.pop(k, None)
+    full_env.update(env or {})
+    return subprocess.run(["sh", "-c", "%s %s" % (program, q(file))], stdin=subprocess.DEVNULL,
+                          close_fds=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          env=full_env, preexec_fn=lambda: os.close(0))
+
+
+def progress_values(stderr):
+    return [int(m) for m in re.findall(r"^FILTER_PROGRESS=(\d+)$", stderr.decode(), re.M)]
+
+
+def annotated(text):
+    return re.search(rb"[(;]NCJ [^\n]* CK=", text, re.I) is not None
+
+
+def strip(data, folder):
+    path = os.path.join(folder, "strip-me.ngc")
+    with open(path, "wb") as f:
+        f.write(data)
+    r = subprocess.run([NCJOULE, "strip", path], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    check(r.returncode == 0, "ncjoule strip failed: %s" % r.stderr.decode())
+    return r.stdout
+
+
+def case(name):
+    print("--- " + name)
+
+
+def main():
+    folder = tempfile.mkdtemp(prefix="ncjoule-filter-")
+    program_file = os.path.join(folder, "part with space's.ngc")  # quoting must survive
+    shutil.copyfile(SAMPLE, program_file)
+    with open(program_file, "rb") as f:
+        original = f.read()
+    base = "%s --ncjoule %s --machine %s --stock %s" % (q(FILTER), q(NCJOULE), q(MACHINE), q(STOCK))
+
+    case("annotates: G-code on stdout, progress on stderr, exit 0, file untouched")
+    r = run_filter(base, program_file)
+    check(r.returncode == 0, "exit %d: %s" % (r.returncode, r.stderr.decode()))
+    check(annotated(r.stdout), "stdout is not annotated:\n%s" % r.stdout[:300].decode())
+    check(strip(r.stdout, folder) == original, "strip(stdout) is not the original program")
+    p = progress_values(r.stderr)
+    check(len(p) >= 2 and p[0] == 0 and p[-1] == 100 and p == sorted(p),
+          "FILTER_PROGRESS lines: %s" % p)
+    check(all(line.startswith("FILTER_PROGRESS=") for line in r.stderr.decode().splitlines()),
+          "stderr holds more than progress on success: %r" % r.stderr.decode())
+    with open(program_file, "rb") as f:
+        check(f.read() == original, "the original file was modified")
+
+    case("settings from the INI's [NCJOULE] section (INI_FILE_NAME), relative to the INI")
+    ini_dir = os.path.join(folder, "config")
+    os.makedirs(ini_dir)
+    shutil.copyfile(MACHINE, os.path.join(ini_dir, "mill.toml"))
+    ini = os.path.join(ini_dir, "mill.ini")
+    with open(ini, "w") as f:
+        f.write("[FILTER]\nPROGRAM_EXTENSION = .ngc G-code\nngc = ncjoule-filter\n\n"
+                "[NCJOULE]\nMACHINE = mill.toml\nPROGRAM = %s\nSTOCK = %s\n" % (NCJOULE, STOCK))
+    r = run_filter(q(FILTER), program_file, {"INI_FILE_NAME": ini})
+    check(r.returncode == 0, "INI: exit %d: %s" % (r.returncode, r.stderr.decode()))
+    check(annotated(r.stdout), "INI: stdout not annotated")
+
+    case("an error in the program: non-zero exit, the reason on stderr, nothing on stdout")
+    bad = os.path.join(folder, "bad.ngc")
+    with open(bad, "wb") as f:
+        f.write(b"(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)\nT1 M6\nG1 X10 F\nM30\n")
+    with open(bad, "rb") as f:
+        bad_original = f.read()
+    r = run_filter(base, bad)
+    check(r.returncode != 0, "bad program: exit 0")
+    check(r.stdout == b"", "bad program: something on stdout: %r" % r.stdout[:200])
+    check("ncjoule could not annotate" in r.stderr.decode(), "bad program: stderr %r" % r.stderr.decode())
+    with open(bad, "rb") as f:
+        check(f.read() == bad_original, "bad program: the file was modified")
+
+    case("passthrough: the same failure shows the program unannotated, exit 0")
+    r = run_filter(base + " --passthrough", bad)
+    check(r.returncode == 0, "passthrough: exit %d" % r.returncode)
+    check(r.stdout == bad_original, "passthrough: stdout is not the program")
+    check("showing the program without annotations" in r.stderr.decode(), "passthrough: no reason given")
+
+    case("missing ncjoule: non-zero exit and why")
+    r = run_filter("%s --ncjoule %s --machine %s" % (q(FILTER), q(os.path.join(folder, "none")), q(MACHINE)),
+                   program_file)
+    check(r.returncode != 0 and "not found" in r.stderr.decode(), "missing ncjoule: %d %r" % (
+        r.returncode, r.stderr.decode()))
+    check(r.stdout == b"", "missing ncjoule: something on stdout")
+
+    case("no machine profile: non-zero exit and why")
+    r = run_filter("%s --ncjoule %s" % (q(FILTER), q(NCJOULE)), program_file)
+    check(r.returncode != 0 and "no machine profile" in r.stderr.decode(), "no profile: %r" % r.stderr.decode())
+
+    case("unreadable file: non-zero exit")
+    r = run_filter(base, os.path.join(folder, "does-not-exist.ngc"))
+    check(r.returncode != 0 and "cannot read" in r.stderr.decode(), "missing file: %r" % r.stderr.decode())
+
+    case("NCJOULE_DISABLE=1 passes the program through unchanged")
+    r = run_filter(base, program_file, {"NCJOULE_DISABLE": "1"})
+    check(r.returncode == 0 and r.stdout == original, "disabled: not passed through")
+
+    with open(program_file, "rb") as f:
+        check(f.read() == original, "the original file was modified")
+    shutil.rmtree(folder, ignore_errors=True)
+    if failures:
+        print("%d failure(s)" % len(failures))
+        return 1
+    print("all filter contract checks passed")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,5 +1,6 @@
 #include "cli_support.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <iterator>
@@ -14,6 +15,11 @@ std::optional<SourceFile> read_source(const std::string& path) {
     buffer << std::cin.rdbuf();
     text = buffer.str();
   } else {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+      std::cerr << "ncjoule: cannot read " << path << ": it is a directory, not an NC file\n";
+      return std::nullopt;
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
       std::cerr << "ncjoule: cannot read " << path << ": no such file or not readable\n";
@@ -29,13 +35,15 @@ std::optional<SourceFile> read_source(const std::string& path) {
 }
 
 void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
-  for (const Diagnostic& d : diagnostics) std::cerr << format_diagnostic(d) << '\n';
+  for (const Diagnostic& d : diagnostics)
+    std::cerr << format_diagnostic(d) << '\n';
 }
 
 std::optional<Dialect> dialect_from_option(const std::string& name) {
   if (auto d = find_dialect(name)) return d;
   std::cerr << "ncjoule: unknown dialect '" << name << "'; known dialects:";
-  for (const std::string& n : dialect_names()) std::cerr << ' ' << n;
+  for (const std::string& n : dialect_names())
+    std::cerr << ' ' << n;
   std::cerr << '\n';
   return std::nullopt;
 }

@@ -151,7 +151,8 @@ std::optional<Tool> read_freecad(const std::string& upper, bool inch, Diagnostic
 // The T word of the first tool change at or after `line` (FreeCAD writes "M6 T1" right after
 // the tool controller's comment).
 std::optional<int> next_tool_number(const SourceFile& source, std::size_t line) {
-  static const std::regex tword(R"(\bT\s*(\d+))", std::regex::icase);
+  // A T word after anything but a letter: "T2", "M6 T2", and posts that glue words ("M6T2").
+  static const std::regex tword(R"((?:^|[^A-Za-z])T\s*(\d+))", std::regex::icase);
   std::vector<Comment> comments;
   std::string code;
   for (std::size_t l = line; l < source.lines.size() && l < line + 8; ++l) {

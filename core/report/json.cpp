@@ -88,6 +88,13 @@ Json estimate_document(const Estimate& e, const MachineProfile& machine) {
   j["time_s"] = timeline.total_s;
   j["removed_mm3"] = energy.removed_mm3;
   j["stock"] = removal ? removal->stock_description : std::string("not simulated");
+  if (removal) {
+    j["removal"] = Json{{"engine", std::string(engine_name(removal->engine))},
+                        {"grid_mm", removal->grid.dx},
+                        {"columns", removal->grid.columns()},
+                        {"stock_volume_mm3", removal->stock_volume_mm3},
+                        {"memory_bytes", removal->memory_bytes}};
+  }
   j["energy_j"] = energy.energy_j;
   j["sec_j_mm3"] = energy.sec_j_mm3;
   j["co2_kg"] = energy.co2_kg;

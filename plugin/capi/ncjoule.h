@@ -89,6 +89,16 @@ const char* ncjoule_result_diagnostic(const ncjoule_result* result, size_t index
 /* The whole result as the JSON document of `ncjoule estimate --json` (docs/json.md). */
 const char* ncjoule_result_json(const ncjoule_result* result);
 
+/* Annotates a program held in memory (old annotations are replaced). Returns the annotated text,
+ * NUL-terminated, to be freed with ncjoule_free(), and its length in *out_length when not NULL;
+ * NULL when the program cannot be estimated or has errors (see ncjoule_last_error()). */
+char* ncjoule_annotate_string(ncjoule_context* context, const char* text, size_t length,
+                              const char* name, size_t* out_length);
+/* Annotates the file at in_path into out_path (NULL or equal to in_path: in place). The output is
+ * written to a temporary file and renamed into place, so on failure (non-zero return) the target
+ * is as it was. Returns 0 on success. */
+int ncjoule_annotate_file(ncjoule_context* context, const char* in_path, const char* out_path);
+
 /* Frees memory the library documents as the caller's. */
 void ncjoule_free(void* pointer);
 

@@ -2,16 +2,20 @@
 #include "ncjoule.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "ncjoule/annotate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
+#include "output_file.hpp"
 
 struct ncjoule_context {
   ncjoule::MachineProfile machine;
@@ -58,6 +62,28 @@ ncjoule_result* make_result(ncjoule_context* context, const ncjoule::SourceFile&
   }
   result->json = ncjoule::estimate_json(result->estimate, context->machine);
   return result.release();
+}
+
+// The annotated text of a program, or nullopt with last_error set.
+std::optional<std::string> annotated_text(ncjoule_context* context, const std::string& name,
+                                          const std::string& text) {
+  const ncjoule::SourceFile program = ncjoule::make_source(name, ncjoule::strip(text));
+  const ncjoule::Estimate e =
+      ncjoule::estimate_program(program, context->machine, context->options);
+  std::string errors;
+  for (const ncjoule::Diagnostic& d : e.diagnostics)
+    if (d.severity == ncjoule::Severity::Error) errors += "\n" + ncjoule::format_diagnostic(d);
+  if (e.failed || !errors.empty()) {
+    fail(name + " was not annotated" + errors);
+    return std::nullopt;
+  }
+  return ncjoule::annotate(program, e, context->machine);
+}
+
+std::optional<std::string> read_file(const char* path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return fail(std::string("cannot read ") + path), std::nullopt;
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 } // namespace
@@ -117,10 +143,9 @@ int ncjoule_context_set_dialect(ncjoule_context* context, const char* dialect) {
 ncjoule_result* ncjoule_estimate_file(ncjoule_context* context, const char* path) {
   if (!context || !path) return fail("no context or no path"), nullptr;
   return guarded<ncjoule_result*>(nullptr, [&]() -> ncjoule_result* {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return fail(std::string("cannot read ") + path), nullptr;
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    return make_result(context, ncjoule::make_source(path, std::move(text)));
+    auto text = read_file(path);
+    if (!text) return nullptr;
+    return make_result(context, ncjoule::make_source(path, std::move(*text)));
   });
 }
 
@@ -182,6 +207,37 @@ const char* ncjoule_result_diagnostic(const ncjoule_result* result, size_t index
 
 const char* ncjoule_result_json(const ncjoule_result* result) {
   return result ? result->json.c_str() : nullptr;
+}
+
+char* ncjoule_annotate_string(ncjoule_context* context, const char* text, size_t length,
+                              const char* name, size_t* out_length) {
+  if (!context || (!text && length)) return fail("no context or no text"), nullptr;
+  return guarded<char*>(nullptr, [&]() -> char* {
+    auto annotated =
+        annotated_text(context, name ? name : "<string>", std::string(text ? text : "", length));
+    if (!annotated) return nullptr;
+    char* out = static_cast<char*>(std::malloc(annotated->size() + 1));
+    if (!out) return fail("out of memory"), nullptr;
+    std::memcpy(out, annotated->data(), annotated->size());
+    out[annotated->size()] = '\0';
+    if (out_length) *out_length = annotated->size();
+    return out;
+  });
+}
+
+int ncjoule_annotate_file(ncjoule_context* context, const char* in_path, const char* out_path) {
+  if (!context || !in_path) return fail("no context or no input path"), -1;
+  return guarded<int>(-1, [&] {
+    auto text = read_file(in_path);
+    if (!text) return -1;
+    auto annotated = annotated_text(context, in_path, *text);
+    if (!annotated) return -1;
+    const std::string target = out_path && *out_path ? out_path : in_path;
+    if (const std::string error = ncjoule::cli::write_output_file(target, *annotated);
+        !error.empty())
+      return fail(error), -1;
+    return 0;
+  });
 }
 
 void ncjoule_free(void* pointer) {

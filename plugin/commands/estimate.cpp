@@ -92,6 +92,7 @@ void print_summary(const SourceFile& source, const MachineProfile& machine,
                    const Timeline& timeline, const EnergyResult& energy, std::size_t block_count) {
   const TimeBreakdown b = break_down(timeline);
   std::printf("%s on %s\n", source.path.c_str(), machine.name.c_str());
+  std::printf("  model       %s\n", energy.model_description.c_str());
   std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(timeline.total_s).c_str(),
               timeline.total_s, block_count);
   std::printf("  rapids      %s\n", clock_text(b.rapid_s).c_str());
@@ -201,6 +202,12 @@ int run_estimate(const EstimateCliOptions& o) {
     std::cout << estimate_csv(e, *source);
   } else {
     print_summary(*source, machine, e.timeline, e.energy, e.lines.size());
+    if (e.removal)
+      std::printf(
+          "  stock       %s\n              %s engine, %.3f mm grid, %zu columns, %.1f MiB\n",
+          e.removal->stock_description.c_str(), std::string(engine_name(e.removal->engine)).c_str(),
+          e.removal->grid.dx, e.removal->grid.columns(),
+          double(e.removal->memory_bytes) / (1 << 20));
     print_operations(operations(*source, e), e.energy);
   }
   std::cout.flush();

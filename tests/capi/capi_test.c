@@ -64,6 +64,43 @@ int main(void) {
     ncjoule_result_destroy(r);
   }
 
+  /* Annotation: of a string, and of a file in place. */
+  {
+    FILE* f = fopen(sample, "rb");
+    static char original[1 << 16];
+    size_t n = f ? fread(original, 1, sizeof original - 1, f) : 0;
+    if (f) fclose(f);
+    size_t out_length = 0;
+    char* annotated = ncjoule_annotate_string(ctx, original, n, "bracket.ngc", &out_length);
+    CHECK(annotated != NULL, "annotate a string");
+    if (annotated) {
+      CHECK(out_length > n && strstr(annotated, "(NCJ ") != NULL, "annotations were added");
+      CHECK(strlen(annotated) == out_length, "length and terminator agree");
+      /* Annotating the annotated text again gives the same text. */
+      size_t again_length = 0;
+      char* again = ncjoule_annotate_string(ctx, annotated, out_length, "bracket.ngc", &again_length);
+      CHECK(again && again_length == out_length && memcmp(again, annotated, out_length) == 0,
+            "annotate is idempotent");
+      ncjoule_free(again);
+      const char* copy = "capi_annotate_test.ngc";
+      FILE* w = fopen(copy, "wb");
+      if (w) {
+        fwrite(original, 1, n, w);
+        fclose(w);
+      }
+      CHECK(ncjoule_annotate_file(ctx, copy, NULL) == 0, "annotate a file in place");
+      FILE* r2 = fopen(copy, "rb");
+      static char written[1 << 17];
+      size_t m = r2 ? fread(written, 1, sizeof written, r2) : 0;
+      if (r2) fclose(r2);
+      CHECK(m == out_length && memcmp(written, annotated, m) == 0,
+            "the file holds the same annotated text");
+      CHECK(ncjoule_annotate_file(ctx, "no/such/file.ngc", NULL) != 0, "missing input refused");
+      remove(copy);
+      ncjoule_free(annotated);
+    }
+  }
+
   /* A string without tool definitions: refused with removal, estimated without. */
   const char* program = "G21 G90\nT3 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X50\nM30\n";
   CHECK(ncjoule_estimate_string(ctx, program, strlen(program), "inline.ngc") == NULL,

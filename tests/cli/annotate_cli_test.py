@@ -13,6 +13,7 @@
 Environment: NCJOULE (the program), NCJOULE_SOURCE_DIR (the repository), NCFILES (default:
 LinuxCNC's install).
 """
+import atexit
 import os
 import re
 import resource
@@ -22,6 +23,12 @@ import stat
 import subprocess
 import sys
 import tempfile
+
+# rs274 keeps its tool table in a file under $HOME (~/.tool.mmap) that every run truncates: runs
+# in parallel (ctest -j) with other tool tables would read each other's. Each test gets its own.
+RS274_HOME = tempfile.mkdtemp(prefix="rs274-home-")
+atexit.register(shutil.rmtree, RS274_HOME, ignore_errors=True)
+RS274_ENV = dict(os.environ, HOME=RS274_HOME)
 
 NCJOULE = os.environ["NCJOULE"]
 ROOT = os.environ["NCJOULE_SOURCE_DIR"]
@@ -104,7 +111,7 @@ RS274_SEQUENCE = re.compile(rb"^\s*\d+ ")
 def rs274(path, cwd):
     """rs274's canonical commands without their sequence numbers and COMMENT lines."""
     r = subprocess.run(["rs274", "-g", path], capture_output=True, stdin=subprocess.DEVNULL,
-                       timeout=300, cwd=cwd)
+                       timeout=300, cwd=cwd, env=RS274_ENV)
     lines = [RS274_SEQUENCE.sub(b"", line) for line in r.stdout.splitlines()]
     return r.returncode, [l for l in lines if not l.lstrip().startswith(b"N..... COMMENT(")
                           and b"COMMENT(" not in l]

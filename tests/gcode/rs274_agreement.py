@@ -7,11 +7,19 @@ Files listed in SUPPORTED must agree on >= 99.9% of rs274's moves; every other f
 crash ncjoule and must give a diagnostic where it is not followed. Prints one line per file.
 Environment: NCJOULE (path of the ncjoule program), NCFILES (default: LinuxCNC's install).
 """
+import atexit
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
+
+# rs274 keeps its tool table in a file under $HOME (~/.tool.mmap) that every run truncates: runs
+# in parallel (ctest -j) with other tool tables would read each other's. Each test gets its own.
+RS274_HOME = tempfile.mkdtemp(prefix="rs274-home-")
+atexit.register(shutil.rmtree, RS274_HOME, ignore_errors=True)
+RS274_ENV = dict(os.environ, HOME=RS274_HOME)
 
 NCFILES = os.environ.get("NCFILES", "/usr/share/linuxcnc/ncfiles")
 NCJOULE = os.environ.get("NCJOULE", "ncjoule")
@@ -81,7 +89,8 @@ def main():
     for rel in files:
         path = os.path.join(NCFILES, rel)
         ref = subprocess.run(["rs274", "-g", "-t", tool_table, path], capture_output=True, text=True,
-                             stdin=subprocess.DEVNULL, timeout=120, cwd=os.path.dirname(path))
+                             stdin=subprocess.DEVNULL, timeout=120, cwd=os.path.dirname(path),
+                             env=RS274_ENV)
         ours = subprocess.run([NCJOULE, "canon", "--tool-table", tool_table, "--tool-units", "inch",
                                path], capture_output=True, text=True,
                               stdin=subprocess.DEVNULL, timeout=120)

@@ -7,23 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "estimate_settings.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/machine.hpp"
 
 namespace ncjoule::cli {
-
-struct EstimateSettings {
-  std::string machine;
-  std::string dialect;
-  std::string stock; // "box:..." or an STL file; empty: the box of the cutting moves
-  std::string engine = "dexel";
-  double grid_mm = 0;
-  bool no_removal = false;
-  std::optional<double> co2_kg_per_kwh, price_per_kwh;
-};
-
-// Adds --machine, --dialect, --stock, --engine, --grid, --no-removal, --co2, --price.
-void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
 
 struct EstimatedProgram {
   SourceFile source;

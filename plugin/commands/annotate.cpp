@@ -14,6 +14,7 @@
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
+#include "estimate_settings.hpp"
 #include "ncjoule/annotate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
@@ -24,55 +25,22 @@ namespace {
 
 struct AnnotateCliOptions {
   std::string file;
-  std::string machine;
   std::string output; // empty: standard output, unless in_place
   bool in_place = false;
-  std::string dialect;
-  std::string stock;
-  std::string engine = "dexel";
-  double grid_mm = 0;
-  bool no_removal = false;
   bool no_header = false;
-  std::optional<double> co2_kg_per_kwh, price_per_kwh;
+  EstimateSettings settings;
 };
-
-// The estimate's options from the command line; nullopt (after saying why) when one is bad.
-std::optional<EstimateOptions> estimate_options(const AnnotateCliOptions& o) {
-  EstimateOptions options;
-  if (!o.dialect.empty()) {
-    options.dialect = dialect_from_option(o.dialect);
-    if (!options.dialect) return std::nullopt;
-  }
-  options.simulate_removal = !o.no_removal;
-  if (!o.stock.empty()) {
-    std::string error;
-    options.stock = parse_stock_spec(o.stock, &error);
-    if (!options.stock) {
-      std::cerr << "ncjoule: bad --stock '" << o.stock << "': " << error << '\n';
-      return std::nullopt;
-    }
-  }
-  options.removal.engine = o.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
-  options.removal.grid_mm = o.grid_mm;
-  options.energy.co2_kg_per_kwh = o.co2_kg_per_kwh;
-  options.energy.price_per_kwh = o.price_per_kwh;
-  return options;
-}
 
 int run_annotate(const AnnotateCliOptions& o) {
   if (o.in_place && o.file == "-") {
     std::cerr << "ncjoule: --in-place needs a file, not standard input\n";
     return kUsage;
   }
-  const std::optional<EstimateOptions> options = estimate_options(o);
-  if (!options) return kUsage;
+  int status = kOk;
+  const std::optional<EstimateOptions> options = estimate_options(o.settings, status);
+  if (!options) return status;
   MachineProfile machine;
-  try {
-    machine = load_profile(o.machine);
-  } catch (const ProfileError& e) {
-    std::cerr << "ncjoule: bad machine profile: " << e.what() << '\n';
-    return kInputError;
-  }
+  if (!load_machine(o.settings.machine, machine)) return kInputError;
   // read_source() does not expect a directory (reading one throws): say so here.
   if (o.file != "-" && std::filesystem::is_directory(o.file)) {
     std::cerr << "ncjoule: cannot read " << o.file << ": it is a directory\n";
@@ -117,26 +85,11 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       "annotate", "Write the program back with its predicted time, MRR, power and energy as a "
                   "comment on every block (ncjoule strip removes them)");
   cmd->add_option("file", options->file, "NC program (- for standard input)")->required();
-  cmd->add_option("-m,--machine", options->machine, "Machine profile (.toml)")->required();
   CLI::Option* output = cmd->add_option("-o,--output", options->output,
                                         "Annotated program (- for standard output, the default)");
   cmd->add_flag("-i,--in-place", options->in_place, "Replace the input file")->excludes(output);
-  cmd->add_option("--dialect", options->dialect,
-                  "Controller dialect (linuxcnc, fanuc, haas, grbl, mach3, siemens); "
-                  "default: the machine profile's, else detected from the file");
-  cmd->add_option("--stock", options->stock,
-                  "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; "
-                  "default: the bounding box of the cutting moves");
-  cmd->add_option("--engine", options->engine, "Removal engine: dexel (default) or voxel")
-      ->check(CLI::IsMember({"dexel", "voxel"}));
-  cmd->add_option("--grid", options->grid_mm,
-                  "Removal grid spacing in mm (default: from the tools)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_flag("--no-removal", options->no_removal,
-                "Do not simulate material removal (no tools needed; cutting power is zero)");
+  add_estimate_settings(*cmd, options->settings);
   cmd->add_flag("--no-header", options->no_header, "Leave out the summary header");
-  cmd->add_option("--co2", options->co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
-  cmd->add_option("--price", options->price_per_kwh, "Price per kWh (overrides the profile)");
   cmd->footer("Exit codes: 0 written; 1 bad command line; 2 bad input (nothing written); "
               "3 the output could not be written (the target is untouched).");
   cmd->callback([options, &exit_code] { exit_code = run_annotate(*options); });

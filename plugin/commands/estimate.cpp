@@ -17,6 +17,7 @@
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
+#include "estimate_settings.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
@@ -27,15 +28,7 @@ namespace {
 
 struct EstimateCliOptions {
   std::string file;
-  std::string machine;
-  std::string dialect;
-  std::string stock;              // "box:..." or an STL file; empty: the box of the cutting moves
-  std::string job;                // job file (TOML): stock and tool table
-  std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
-  std::string engine = "dexel";
-  double grid_mm = 0;
-  bool no_removal = false;
-  std::optional<double> co2_kg_per_kwh, price_per_kwh;
+  EstimateSettings settings;
   bool json = false;
   bool csv = false;
 };
@@ -136,57 +129,17 @@ void print_operations(const std::vector<OperationSummary>& ops, const EnergyResu
 // ---------------------------------------------------------------------------------------------
 
 int run_estimate(const EstimateCliOptions& o) {
+  int status = kOk;
+  const std::optional<EstimateOptions> options = estimate_options(o.settings, status);
+  if (!options) return status;
   MachineProfile machine;
-  try {
-    machine = load_profile(o.machine);
-  } catch (const ProfileError& e) {
-    std::cerr << "ncjoule: bad machine profile: " << e.what() << '\n';
-    return kInputError;
-  }
+  if (!load_machine(o.settings.machine, machine)) return kInputError;
   auto source = read_source(o.file);
   if (!source) return kInputError;
 
-  EstimateOptions options;
-  if (!o.dialect.empty()) {
-    options.dialect = dialect_from_option(o.dialect);
-    if (!options.dialect) return kUsage;
-  }
-  options.simulate_removal = !o.no_removal;
-  // Tools: the job file's, then the command line's, each replacing the one before (and the
-  // program's header comments) for the same number.
-  if (!o.job.empty()) {
-    std::vector<Diagnostic> job_diagnostics;
-    const auto job = read_job_file(o.job, job_diagnostics);
-    print_diagnostics(job_diagnostics);
-    if (!job) return kInputError;
-    if (job->stock) options.stock = job->stock;
-    options.tools = job->tools;
-  }
-  for (const std::string& text : o.tools) {
-    std::string error;
-    const auto tool = parse_tool_spec(text, &error);
-    if (!tool) {
-      std::cerr << "ncjoule: bad --tool '" << text << "': " << error << '\n';
-      return kUsage;
-    }
-    options.tools[tool->number] = *tool;
-  }
-  if (!o.stock.empty()) {
-    std::string error;
-    options.stock = parse_stock_spec(o.stock, &error);
-    if (!options.stock) {
-      std::cerr << "ncjoule: bad --stock '" << o.stock << "': " << error << '\n';
-      return kUsage;
-    }
-  }
-  options.removal.engine = o.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
-  options.removal.grid_mm = o.grid_mm;
-  options.energy.co2_kg_per_kwh = o.co2_kg_per_kwh;
-  options.energy.price_per_kwh = o.price_per_kwh;
-
   ProgressBar progress("estimating", 1);
   progress.begin(0, source->path);
-  const Estimate e = estimate_program(*source, machine, options);
+  const Estimate e = estimate_program(*source, machine, *options);
   progress.finish();
   if (e.failed) {
     print_diagnostics(e.diagnostics);
@@ -223,29 +176,7 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       "estimate", "Predict a program's time, energy, SEC, CO2 and cost on a machine, by "
                   "component, operation and block");
   cmd->add_option("file", options->file, "NC program (- for standard input)")->required();
-  cmd->add_option("-m,--machine", options->machine, "Machine profile (.toml)")->required();
-  cmd->add_option("--dialect", options->dialect,
-                  "Controller dialect (linuxcnc, fanuc, haas, grbl, mach3, siemens); "
-                  "default: the machine profile's, else detected from the file");
-  cmd->add_option("--stock", options->stock,
-                  "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; "
-                  "default: the bounding box of the cutting moves");
-  cmd->add_option("--job", options->job,
-                  "Job file (TOML): stock = \"box:...\" or stock_stl = \"part.stl\", and "
-                  "[[tool]] entries; --stock and --tool override it");
-  cmd->add_option("--tool", options->tools,
-                  "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
-                  "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
-      ->allow_extra_args(false); // one tool per --tool, so the program's file name is not taken
-  cmd->add_option("--engine", options->engine, "Removal engine: dexel (default) or voxel")
-      ->check(CLI::IsMember({"dexel", "voxel"}));
-  cmd->add_option("--grid", options->grid_mm,
-                  "Removal grid spacing in mm (default: from the tools)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_flag("--no-removal", options->no_removal,
-                "Do not simulate material removal (no tools needed; cutting power is zero)");
-  cmd->add_option("--co2", options->co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
-  cmd->add_option("--price", options->price_per_kwh, "Price per kWh (overrides the profile)");
+  add_estimate_settings(*cmd, options->settings);
   auto* json = cmd->add_flag("--json", options->json,
                              "Print the totals, operations and every block as JSON (docs/json.md)");
   cmd->add_flag("--csv", options->csv,

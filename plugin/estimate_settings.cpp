@@ -1,0 +1,85 @@
+#include "estimate_settings.hpp"
+
+#include <iostream>
+
+#include "cli_support.hpp"
+#include "command_registry.hpp"
+#include "ncjoule/profile.hpp"
+
+namespace ncjoule::cli {
+
+void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
+  cmd.add_option("-m,--machine", s.machine, "Machine profile (.toml)")->required();
+  cmd.add_option("--dialect", s.dialect,
+                 "Controller dialect (linuxcnc, fanuc, haas, grbl, mach3, siemens, heidenhain, "
+                 "reprap); default: the machine profile's, else detected from the file");
+  cmd.add_option("--stock", s.stock,
+                 "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; default: the "
+                 "job file's, else the bounding box of the cutting moves");
+  cmd.add_option("--job", s.job,
+                 "Job file (TOML): stock = \"box:...\" or stock_stl = \"part.stl\", and "
+                 "[[tool]] entries; --stock and --tool override it");
+  cmd.add_option("--tool", s.tools,
+                 "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
+                 "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
+      ->allow_extra_args(false); // one tool per --tool, so the program's file name is not taken
+  cmd.add_option("--engine", s.engine, "Removal engine: dexel (default) or voxel")
+      ->check(CLI::IsMember({"dexel", "voxel"}));
+  cmd.add_option("--grid", s.grid_mm, "Removal grid spacing in mm (default: from the tools)")
+      ->check(CLI::PositiveNumber);
+  cmd.add_flag("--no-removal", s.no_removal,
+               "Do not simulate material removal (no tools needed; cutting power is zero)");
+  cmd.add_option("--co2", s.co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
+  cmd.add_option("--price", s.price_per_kwh, "Price per kWh (overrides the profile)");
+}
+
+bool load_machine(const std::string& path, MachineProfile& machine) {
+  try {
+    machine = load_profile(path);
+    return true;
+  } catch (const ProfileError& e) {
+    std::cerr << "ncjoule: bad machine profile: " << e.what() << '\n';
+    return false;
+  }
+}
+
+std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& exit_code) {
+  EstimateOptions options;
+  if (!s.dialect.empty()) {
+    options.dialect = dialect_from_option(s.dialect);
+    if (!options.dialect) return exit_code = kUsage, std::nullopt;
+  }
+  options.simulate_removal = !s.no_removal;
+  if (!s.job.empty()) {
+    std::vector<Diagnostic> job_diagnostics;
+    const auto job = read_job_file(s.job, job_diagnostics);
+    print_diagnostics(job_diagnostics);
+    if (!job) return exit_code = kInputError, std::nullopt;
+    if (job->stock) options.stock = job->stock;
+    options.tools = job->tools;
+  }
+  for (const std::string& text : s.tools) {
+    std::string error;
+    const auto tool = parse_tool_spec(text, &error);
+    if (!tool) {
+      std::cerr << "ncjoule: bad --tool '" << text << "': " << error << '\n';
+      return exit_code = kUsage, std::nullopt;
+    }
+    options.tools[tool->number] = *tool;
+  }
+  if (!s.stock.empty()) {
+    std::string error;
+    options.stock = parse_stock_spec(s.stock, &error);
+    if (!options.stock) {
+      std::cerr << "ncjoule: bad --stock '" << s.stock << "': " << error << '\n';
+      return exit_code = kUsage, std::nullopt;
+    }
+  }
+  options.removal.engine = s.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
+  options.removal.grid_mm = s.grid_mm;
+  options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
+  options.energy.price_per_kwh = s.price_per_kwh;
+  return options;
+}
+
+} // namespace ncjoule::cli

@@ -1,0 +1,39 @@
+// The options that say how to estimate (machine, dialect, stock, tools, removal, prices), shared
+// by every command that runs the pipeline: estimate, annotate, compare and report.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ncjoule/estimate.hpp"
+#include "ncjoule/machine.hpp"
+
+namespace ncjoule::cli {
+
+struct EstimateSettings {
+  std::string machine;
+  std::string dialect;
+  std::string stock;              // "box:..." or an STL file; empty: the box of the cutting moves
+  std::string job;                // job file (TOML): stock and tool table
+  std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
+  std::string engine = "dexel";
+  double grid_mm = 0;
+  bool no_removal = false;
+  std::optional<double> co2_kg_per_kwh, price_per_kwh;
+};
+
+// Adds --machine, --dialect, --stock, --job, --tool, --engine, --grid, --no-removal, --co2 and
+// --price to a subcommand.
+void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
+
+// Loads the machine profile; prints why and returns false when it is wrong.
+bool load_machine(const std::string& path, MachineProfile& machine);
+
+// The pipeline's options from the settings. Tools: the job file's, then the command line's, each
+// replacing the one before (and the program's header comments) for the same number; --stock
+// replaces the job's stock. On a bad setting it prints why, sets `exit_code` and returns nullopt.
+std::optional<EstimateOptions> estimate_options(const EstimateSettings& settings, int& exit_code);
+
+} // namespace ncjoule::cli

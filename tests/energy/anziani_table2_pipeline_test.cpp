@@ -11,35 +11,18 @@
 #include <cstdio>
 #include <string>
 
+#include "anziani_table2.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
 using namespace ncjoule;
+using ncjoule::test::kCutLengthMm;
+using ncjoule::test::kTable2;
+using ncjoule::test::Table2Row;
 
 namespace {
 
-struct Table2Row {
-  int test;
-  double rpm, depth_mm, width_mm, feed_mm_min;
-  double expected_mrr, expected_power_kw, expected_sec; // Zhou et al.'s values in the thesis
-  double thesis_model_power_kw;                         // the thesis's simulation
-};
-
-// Anziani Table 2 (see reference/MODELS.md; the "Model Power" column from the thesis).
-constexpr Table2Row kTable2[] = {
-    {1, 500, 3.0, 0.50, 120, 3.0, 0.83, 276.67, 0.86},
-    {2, 1300, 6.0, 1.50, 120, 18.0, 1.03, 57.22, 1.04},
-    {3, 2100, 9.0, 2.00, 120, 36.0, 1.36, 37.78, 1.29},
-    {4, 2100, 6.0, 0.50, 180, 9.0, 1.17, 130.00, 1.16},
-    {5, 500, 9.0, 1.50, 180, 40.5, 0.95, 23.46, 0.90},
-    {6, 1300, 3.0, 2.00, 180, 18.0, 1.03, 57.22, 1.04},
-    {7, 1300, 9.0, 0.50, 240, 18.0, 1.01, 56.11, 1.04},
-    {8, 2100, 3.0, 1.50, 240, 18.0, 1.24, 68.89, 1.21},
-    {9, 500, 6.0, 2.00, 240, 48.0, 0.96, 20.00, 0.90},
-};
-
 constexpr double kToolRadiusMm = 6.0;
-constexpr double kCutLengthMm = 155.0;
 // The steady block: the tool centre from 20 mm to 135 mm along the 155 mm stock. The tool is
 // fully engaged once its front chord across the engaged strip (at most sqrt(6^2 - 4^2) = 4.5 mm
 // ahead of the centre for the widest, 2 mm cut) is inside the stock, and until its back chord

@@ -13,6 +13,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "command_registry.hpp"
+
 namespace ncjoule::cli {
 
 namespace output_file_detail {
@@ -105,6 +107,19 @@ inline std::string write_output_file(const std::string& target, std::string_view
     error = "cannot replace " + target + ": " + reason();
   if (!error.empty()) ::unlink(temp.c_str());
   return error;
+}
+
+// Writes a rewritten program where the command line says: over `file` when `in_place`, else to
+// `output` ("" or "-": standard output). Returns the exit code, after saying why on failure.
+inline int write_program(const std::string& file, const std::string& output, bool in_place,
+                         std::string_view text) {
+  const std::string target = in_place ? file : (output.empty() ? "-" : output);
+  if (const std::string error = write_output_file(target, text); !error.empty()) {
+    std::fprintf(stderr, "ncjoule: %s; %s\n", error.c_str(),
+                 in_place ? (file + " is untouched").c_str() : "nothing was written");
+    return kOutputError;
+  }
+  return 0;
 }
 
 } // namespace ncjoule::cli

@@ -6,7 +6,6 @@
 // file gives the same result as annotating the original. Nothing is written when the program
 // cannot be estimated; the output goes through a temporary file, so a failed write leaves the
 // target as it was.
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -41,11 +40,6 @@ int run_annotate(const AnnotateCliOptions& o) {
   if (!options) return status;
   MachineProfile machine;
   if (!load_machine(o.settings.machine, machine)) return kInputError;
-  // read_source() does not expect a directory (reading one throws): say so here.
-  if (o.file != "-" && std::filesystem::is_directory(o.file)) {
-    std::cerr << "ncjoule: cannot read " << o.file << ": it is a directory\n";
-    return kInputError;
-  }
   const auto input = read_source(o.file);
   if (!input) return kInputError;
 
@@ -70,13 +64,7 @@ int run_annotate(const AnnotateCliOptions& o) {
   annotate_options.header = !o.no_header;
   const std::string text = annotate(program, e, machine, annotate_options);
 
-  const std::string target = o.in_place ? o.file : (o.output.empty() ? "-" : o.output);
-  if (const std::string error = write_output_file(target, text); !error.empty()) {
-    std::cerr << "ncjoule: " << error << "; "
-              << (o.in_place ? o.file + " is untouched" : "nothing was written") << '\n';
-    return kOutputError;
-  }
-  return kOk;
+  return write_program(o.file, o.output, o.in_place, text);
 }
 
 const Registration registration([](CLI::App& app, int& exit_code) {

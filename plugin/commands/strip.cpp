@@ -1,7 +1,6 @@
 // `ncjoule strip IN [-o OUT | --in-place]`: takes ncjoule's annotations out of a program and
 // gives back the bytes it had before `ncjoule annotate`. Comments a user wrote are never
 // touched, even when they look like ncjoule's (docs/annotation.md).
-#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -25,23 +24,12 @@ int run_strip(const StripCliOptions& o) {
     std::cerr << "ncjoule: --in-place needs a file, not standard input\n";
     return kUsage;
   }
-  // read_source() does not expect a directory (reading one throws): say so here.
-  if (o.file != "-" && std::filesystem::is_directory(o.file)) {
-    std::cerr << "ncjoule: cannot read " << o.file << ": it is a directory\n";
-    return kInputError;
-  }
   const auto input = read_source(o.file);
   if (!input) return kInputError;
   const std::string text = strip(input->text);
   // A file without annotations is left alone, so that its time stamp does not change.
   if (o.in_place && text == input->text) return kOk;
-  const std::string target = o.in_place ? o.file : (o.output.empty() ? "-" : o.output);
-  if (const std::string error = write_output_file(target, text); !error.empty()) {
-    std::cerr << "ncjoule: " << error << "; "
-              << (o.in_place ? o.file + " is untouched" : "nothing was written") << '\n';
-    return kOutputError;
-  }
-  return kOk;
+  return write_program(o.file, o.output, o.in_place, text);
 }
 
 const Registration registration([](CLI::App& app, int& exit_code) {

@@ -10,25 +10,6 @@
 using namespace ncjoule;
 using namespace ncjoule::test;
 
-namespace {
-std::string T(double x, double y, double z) {
-  char b[128];
-  std::snprintf(b, sizeof b, "STRAIGHT_TRAVERSE(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y,
-                z);
-  return b;
-}
-std::string F(double x, double y, double z) {
-  char b[128];
-  std::snprintf(b, sizeof b, "STRAIGHT_FEED(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y, z);
-  return b;
-}
-std::string D(double seconds) {
-  char b[64];
-  std::snprintf(b, sizeof b, "DWELL(%.4f)", seconds);
-  return b;
-}
-} // namespace
-
 TEST_CASE("G83 pecks back to R after every peck, G98 retracts to the start height") {
   const Toolpath p = run("G21\nG0 X0 Y0 Z5\nG98 G83 X1 Y2 Z-4 R1 Q1.5 F100\nM2\n");
   CHECK(errors(p) == 0);

@@ -1,6 +1,7 @@
 // Test helpers: run a program held in memory through the interpreter and look at what came out.
 #pragma once
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,24 @@ inline std::vector<Diagnostic> with_severity(const Toolpath& path, Severity seve
 
 inline std::size_t errors(const Toolpath& path) {
   return with_severity(path, Severity::Error).size();
+}
+
+// Canonical lines as format_canon prints them, for expected move lists in tests.
+inline std::string T(double x, double y, double z) {
+  char b[128];
+  std::snprintf(b, sizeof b, "STRAIGHT_TRAVERSE(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y,
+                z);
+  return b;
+}
+inline std::string F(double x, double y, double z) {
+  char b[128];
+  std::snprintf(b, sizeof b, "STRAIGHT_FEED(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y, z);
+  return b;
+}
+inline std::string D(double seconds) {
+  char b[64];
+  std::snprintf(b, sizeof b, "DWELL(%.4f)", seconds);
+  return b;
 }
 
 } // namespace ncjoule::test

@@ -9,20 +9,6 @@
 using namespace ncjoule;
 using namespace ncjoule::test;
 
-namespace {
-std::string T(double x, double y, double z) {
-  char b[128];
-  std::snprintf(b, sizeof b, "STRAIGHT_TRAVERSE(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y,
-                z);
-  return b;
-}
-std::string F(double x, double y, double z) {
-  char b[128];
-  std::snprintf(b, sizeof b, "STRAIGHT_FEED(%.4f, %.4f, %.4f, 0.0000, 0.0000, 0.0000)", x, y, z);
-  return b;
-}
-} // namespace
-
 TEST_CASE("o-word sub/call with arguments, nested calls, return value, loops and branches") {
   const std::string program = R"(G21
 o<square> sub

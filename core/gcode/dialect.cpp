@@ -1,5 +1,6 @@
 // The controller dialects ncjoule knows, as data, and guessing one from a file.
 #include <algorithm>
+#include <array>
 #include <cctype>
 
 #include "ncjoule/gcode.hpp"
@@ -25,6 +26,8 @@ std::vector<Dialect> make_dialects() {
   fanuc.g65_macro_calls = true;
   fanuc.upper_case_comments = true;
   fanuc.max_line_length = 128;
+  fanuc.canned_cycle_group = true;
+  fanuc.last_code_of_group_wins = true;
   all.push_back(fanuc);
 
   Dialect haas = fanuc;
@@ -43,6 +46,8 @@ std::vector<Dialect> make_dialects() {
   Dialect mach3;
   mach3.name = "mach3";
   mach3.fanuc_subprograms = true; // Mach3/Mach4 support M98/M99 and o-numbers
+  mach3.canned_cycle_group = true;
+  mach3.last_code_of_group_wins = true;
   all.push_back(mach3);
 
   Dialect siemens;
@@ -55,6 +60,8 @@ std::vector<Dialect> make_dialects() {
   siemens.paren_argument_lists = true; // CYCLE81(...), MSG("...")
   siemens.sinumerik_words = true;
   siemens.g70_g71_units = true; // G70/G700 inch, G71/G710 mm
+  siemens.canned_cycle_group = true;
+  siemens.last_code_of_group_wins = true;
   all.push_back(siemens);
 
   Dialect heidenhain;
@@ -111,12 +118,15 @@ std::vector<std::string> dialect_names() {
   return names;
 }
 
-Dialect detect_dialect(const SourceFile& source) {
+DialectChoice choose_dialect(const SourceFile& source) {
   // Look at the first few hundred lines only: posts put the tell-tale lines up front. Names in
   // the header comments (FreeCAD writes "Post Processor: ...grbl_post", other CAM systems the
-  // machine or control) count as much as syntax.
-  int fanuc_votes = 0, haas_votes = 0, grbl_votes = 0, linuxcnc_votes = 0, mach_votes = 0;
-  int siemens_votes = 0, heidenhain_votes = 0, reprap_votes = 0;
+  // machine or control) count as much as syntax. The first clue for each dialect is kept to
+  // say why it was chosen.
+  enum Family { LinuxCnc, Siemens, Heidenhain, Haas, Grbl, RepRap, Mach, Fanuc, kFamilies };
+  static constexpr const char* kNames[kFamilies] = {"linuxcnc", "siemens", "heidenhain", "haas",
+                                                    "grbl",     "reprap",  "mach3",      "fanuc"};
+  std::array<std::string, kFamilies> clue;
   const std::size_t limit = std::min<std::size_t>(source.lines.size(), 400);
   auto has = [](const std::string& l, const char* what) {
     return l.find(what) != std::string::npos;
@@ -126,7 +136,11 @@ Dialect detect_dialect(const SourceFile& source) {
     const std::size_t first = l.find_first_not_of(" \t");
     if (first == std::string::npos) continue;
     l.erase(0, first);
-    if (l[0] == '$') ++grbl_votes;
+    const std::string at = " at line " + std::to_string(i + 1);
+    auto vote = [&](Family f, const std::string& what) {
+      if (clue[f].empty()) clue[f] = what + at;
+    };
+    if (l[0] == '$') vote(Grbl, "'$' settings line");
     if (l[0] == 'o' && l.size() > 1 && std::isdigit(static_cast<unsigned char>(l[1]))) {
       // An O-number alone (maybe with a comment) is a Fanuc program header; followed by a
       // keyword (sub, if, repeat, ...) it is a LinuxCNC O-word.
@@ -136,45 +150,55 @@ Dialect detect_dialect(const SourceFile& source) {
       while (k < l.size() && (l[k] == ' ' || l[k] == '\t'))
         ++k;
       if (k == l.size() || l[k] == '(' || l[k] == ';')
-        ++fanuc_votes;
+        vote(Fanuc, "O-number program header");
       else
-        ++linuxcnc_votes;
+        vote(LinuxCnc, "O-word with a keyword");
     }
-    if (l.rfind("o<", 0) == 0 || has(l, "#<")) ++linuxcnc_votes;
-    if (has(l, "m98") || has(l, "g65") || has(l, "fanuc")) ++fanuc_votes;
-    if (has(l, "g187") || has(l, "m97") || has(l, "haas")) ++haas_votes;
-    if (has(l, "mach3") || has(l, "mach4") || has(l, "uccnc")) ++mach_votes;
-    if (has(l, "grbl") || has(l, "jtech")) ++grbl_votes; // J Tech lasers run grbl
-    if (has(l, "linuxcnc") || has(l, "emc2") || has(l, "pathpilot") || has(l, "tormach"))
-      ++linuxcnc_votes;
-    if (has(l, "mcall") || has(l, "cycle8") || has(l, "sinumerik") || has(l, "siemens") ||
-        l.rfind("trans ", 0) == 0 || has(l, "g291") || has(l, "g290"))
-      ++siemens_votes;
+    if (l.rfind("o<", 0) == 0) vote(LinuxCnc, "named O-word");
+    if (has(l, "#<")) vote(LinuxCnc, "named parameter");
+    if (has(l, "m98")) vote(Fanuc, "M98 subprogram call");
+    if (has(l, "g65")) vote(Fanuc, "G65 macro call");
+    if (has(l, "fanuc")) vote(Fanuc, "'fanuc' in the text");
+    if (has(l, "g187")) vote(Haas, "G187");
+    if (has(l, "m97")) vote(Haas, "M97 local subprogram call");
+    if (has(l, "haas")) vote(Haas, "'haas' in the text");
+    if (has(l, "mach3") || has(l, "mach4")) vote(Mach, "'mach3/mach4' in the text");
+    if (has(l, "uccnc")) vote(Mach, "'uccnc' in the text");
+    if (has(l, "grbl") || has(l, "jtech")) vote(Grbl, "'grbl' in the text"); // J Tech lasers
+    if (has(l, "linuxcnc") || has(l, "emc2")) vote(LinuxCnc, "'linuxcnc' in the text");
+    if (has(l, "pathpilot") || has(l, "tormach")) vote(LinuxCnc, "'tormach' in the text");
+    if (has(l, "mcall")) vote(Siemens, "MCALL");
+    if (has(l, "cycle8")) vote(Siemens, "CYCLE8x call");
+    if (has(l, "sinumerik") || has(l, "siemens")) vote(Siemens, "'sinumerik' in the text");
+    if (l.rfind("trans ", 0) == 0) vote(Siemens, "TRANS frame");
+    if (has(l, "g291") || has(l, "g290")) vote(Siemens, "G290/G291");
     // Heidenhain ISO: "%NAME G71 *" headers, blocks ending in '*'.
-    if ((l[0] == '%' && (has(l, "g70") || has(l, "g71"))) || has(l, "heidenhain") ||
-        (l.size() > 1 && l.back() == '*' && l[0] == 'n'))
-      ++heidenhain_votes;
+    if (l[0] == '%' && (has(l, "g70") || has(l, "g71"))) vote(Heidenhain, "'%NAME G71' header");
+    if (has(l, "heidenhain")) vote(Heidenhain, "'heidenhain' in the text");
+    if (l.size() > 1 && l.back() == '*' && l[0] == 'n') vote(Heidenhain, "block ending in '*'");
     if (has(l, "marlin") || has(l, "rrf_post") || has(l, "reprap") || has(l, "smoothie"))
-      ++reprap_votes;
+      vote(RepRap, "'marlin/reprap' in the text");
   }
-  const char* name = "linuxcnc";
-  if (linuxcnc_votes > 0)
-    name = "linuxcnc";
-  else if (siemens_votes > 0)
-    name = "siemens";
-  else if (heidenhain_votes > 0)
-    name = "heidenhain";
-  else if (haas_votes > 0)
-    name = "haas";
-  else if (grbl_votes > 0)
-    name = "grbl";
-  else if (reprap_votes > 0)
-    name = "reprap";
-  else if (mach_votes > 0)
-    name = "mach3";
-  else if (fanuc_votes > 0)
-    name = "fanuc";
-  return *find_dialect(name);
+  // The first family in this order with a clue wins: the more specific before the more general.
+  for (int f = 0; f < kFamilies; ++f)
+    if (!clue[f].empty()) return {*find_dialect(kNames[f]), DialectOrigin::Detected, clue[f]};
+  return {*find_dialect("linuxcnc"), DialectOrigin::Default, "nothing in the program names one"};
+}
+
+Dialect detect_dialect(const SourceFile& source) {
+  return choose_dialect(source).dialect;
+}
+
+std::string describe_dialect_choice(const DialectChoice& choice) {
+  switch (choice.origin) {
+  case DialectOrigin::Given:
+    return choice.dialect.name + " (given)";
+  case DialectOrigin::Detected:
+    return choice.dialect.name + " (detected: " + choice.reason + ")";
+  case DialectOrigin::Default:
+    break;
+  }
+  return choice.dialect.name + " (default: " + choice.reason + ")";
 }
 
 } // namespace ncjoule

@@ -140,9 +140,17 @@ int BlockValues::g_column(int code) const {
 
 Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& options,
                          const CanonSink& sink)
-    : source_(source), options_(options), sink_(sink),
-      dialect_(options.dialect ? *options.dialect : detect_dialect(source)), tools_(options.tools) {
+    : source_(source), options_(options), sink_(sink), tools_(options.tools) {
+  const DialectChoice choice = options.dialect
+                                   ? DialectChoice{*options.dialect, DialectOrigin::Given, "given"}
+                                   : choose_dialect(source);
+  dialect_ = choice.dialect;
+  // With no dialect named or recognised, what only LinuxCNC refuses is a warning: the program
+  // may well be written for another control.
+  strict_ = choice.origin != DialectOrigin::Default;
   result_.dialect = dialect_;
+  result_.dialect_origin = choice.origin;
+  result_.dialect_reason = choice.reason;
   retract_to_r_ = dialect_.retract_to_r_by_default;
   arc_incremental_ = !dialect_.arc_centre_absolute;
   params_.set_system_lookup(
@@ -681,19 +689,43 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
   return ok;
 }
 
-bool Interpreter::check_modal_groups(const BlockValues& v) {
+bool Interpreter::check_modal_groups(BlockValues& v) {
+  // G80 beside another motion code: the other code counts (rs274 runs "G0 G80 G90 ..." so, and
+  // posts write it in their safety line).
+  const auto motion_codes =
+      std::count_if(v.g.begin(), v.g.end(), [](int code) { return g_group(code) == 1; });
+  if (motion_codes > 1 && has_g(v, 800)) std::erase(v.g, 800);
+  // G28/G30 already move in machine coordinates: a G53 beside them ("G91 G28 G53 Z0") adds
+  // nothing. LinuxCNC refuses the pair (two codes of group 0); the evident reading is kept.
+  if (has_g(v, 530) && (has_g(v, 280) || has_g(v, 300))) {
+    warning(v.g_column(530), "G53 with G28/G30 on one line: G53 is ignored (the return to home "
+                             "is in machine coordinates already; LinuxCNC refuses the pair)");
+    std::erase(v.g, 530);
+  }
   int seen[16] = {};
   bool ok = true;
+  std::vector<int> overridden;
   for (int code : v.g) {
     const int group = g_group(code);
     if (group < 0) continue;
     if (seen[group]) {
-      error(v.g_column(code), "two G codes of the same modal group on one line: " +
-                                  g_name(seen[group] - 1) + " and " + g_name(code));
-      ok = false;
+      const std::string pair = g_name(seen[group] - 1) + " and " + g_name(code);
+      if (dialect_.last_code_of_group_wins || !strict_) {
+        // Fanuc: the last code of a group in a block is the one that counts.
+        warning(v.g_column(code),
+                "two G codes of the same modal group on one line: " + pair +
+                    "; the last one counts" +
+                    (dialect_.last_code_of_group_wins ? "" : " (LinuxCNC would refuse the block)"));
+        overridden.push_back(seen[group] - 1);
+      } else {
+        error(v.g_column(code), "two G codes of the same modal group on one line: " + pair);
+        ok = false;
+      }
     }
     seen[group] = code + 1;
   }
+  for (int code : overridden)
+    v.g.erase(std::find(v.g.begin(), v.g.end(), code));
   return ok;
 }
 
@@ -1038,14 +1070,30 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     // cycle code after another (G81 then G82) goes on with the same series.
     const bool cycle = code == 730 || code == 740 || (code >= 810 && code <= 890);
     if (!cycle) have_cycle_initial_height_ = false;
+    const bool plain = motion_ == Motion::Rapid || motion_ == Motion::Linear ||
+                       motion_ == Motion::ArcCW || motion_ == Motion::ArcCCW;
+    if ((cycle || code == 800) && plain) motion_before_cycle_ = motion_;
+    if (code == 800 && dialect_.canned_cycle_group) {
+      // Fanuc's group 09: G80 ends the cycle and leaves G0/G1/G2/G3 as they were.
+      if (!plain) motion_ = motion_before_cycle_;
+      continue;
+    }
     motion_ = Motion(code);
   }
   const bool g53 = has_g(v, 530);
   const bool motion_word_given =
-      std::any_of(v.g.begin(), v.g.end(), [](int c) { return g_group(c) == 1; });
+      std::any_of(v.g.begin(), v.g.end(), [](int c) { return g_group(c) == 1 && c != 800; });
   if (dialect_.o_word_subroutines && (has_g(v, 50) || has_g(v, 51))) {
     spline(v, has_g(v, 51));
     axes_used = true;
+  }
+  if (motion_ == Motion::None && v.has_axis() && !axes_used && !strict_) {
+    // Most controls keep G0/G1 in force after G80; LinuxCNC does not. With the dialect unknown,
+    // the program is more likely written for one of the many than for the one.
+    motion_ = motion_before_cycle_;
+    warning(0, "axis words after G80 with no motion code: moved in the " + g_name(int(motion_)) +
+                   " mode in force before the cycle, as Fanuc-family controls do (LinuxCNC "
+                   "would refuse the block)");
   }
   if (!axes_used && (v.has_axis() || (motion_word_given && motion_ != Motion::None))) {
     switch (motion_) {

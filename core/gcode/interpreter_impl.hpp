@@ -93,7 +93,7 @@ private:
   // --- one block ----------------------------------------------------------------------------
   bool evaluate_words(const Block& b, BlockValues& v);
   void execute(const Block& b, BlockValues& v);
-  bool check_modal_groups(const BlockValues& v);
+  bool check_modal_groups(BlockValues& v);
 
   // --- motion (motion.cpp) -------------------------------------------------------------------
   Pose target_from_words(const BlockValues& v, bool machine_coordinates);
@@ -103,6 +103,10 @@ private:
   void spindle_synced(const BlockValues& v);
   void inverse_time_feed(double length_mm, const BlockValues& v);
   void arc(const BlockValues& v, bool clockwise);
+  // Centre of an I/J/K arc from the offsets (mm, in the plane's two axes).
+  void arc_centre_from_offsets(const BlockValues& v, double sf, double ss, double ef, double es,
+                               double of, double os, double& cf, double& cs);
+  void spiral_warning(int column, double sf, double ss, double ef, double es, double cf, double cs);
   void go_home(const BlockValues& v, int base_param);
   void set_axis_offsets(const BlockValues& v);
   void set_coordinate_data(const BlockValues& v);
@@ -147,6 +151,7 @@ private:
   const InterpreterOptions& options_;
   const CanonSink& sink_;
   Dialect dialect_;
+  bool strict_ = true; // the dialect was given or recognised: refuse what its control refuses
   InterpretResult result_;
   Parameters params_;
   ToolTable tools_; // a copy: G10 L1/L10 edit it as the program runs
@@ -174,10 +179,15 @@ private:
   Pose g92_;                 // G92 offsets (mm)
   double tool_offset_z_ = 0; // active tool length offset (mm)
   Motion motion_ = Motion::Rapid;
+  // The G0/G1/G2/G3 mode in force when the current canned cycle (or G80) began: what moves axis
+  // words after G80 where canned cycles are a modal group of their own (Dialect).
+  Motion motion_before_cycle_ = Motion::Rapid;
   bool incremental_ = false;    // G91
   bool arc_incremental_ = true; // G91.1
   bool retract_to_r_ = true;    // G99
   int cutter_comp_ = 40;
+  bool arc_offsets_reversed_ = false;          // I/J/K read from the centre to the start
+  std::size_t arcs_fitting_only_standard_ = 0; // I/J/K arcs that fit only the standard way
   int selected_tool_ = 0;
   // Sticky canned-cycle values (program units).
   double cycle_r_ = 0, cycle_z_ = 0, cycle_q_ = 0, cycle_p_ = 0;

@@ -19,10 +19,27 @@ double axis(const Pose& p, int i) {
 }
 constexpr char kAxisLetters[6] = {'x', 'y', 'z', 'a', 'b', 'c'};
 
-// Arc radius tolerances of LinuxCNC (rs274ngc): an arc whose end radius differs from its start
-// radius by more than these is an error.
-constexpr double kArcAbsToleranceMm = 0.00005 * 25.4;
-constexpr double kArcRelTolerance = 0.001;
+// Arc tolerances of rs274ngc (LinuxCNC 2.9, checked against its rs274), in mm: an
+// arc whose radius to the end differs from its radius to the start by more than the spiral
+// tolerance, both absolutely and relatively, is refused; so is any difference over 100 times the
+// absolute tolerance. Radii under the radius tolerance are zero. Here a refused arc is timed as a
+// spiral with a warning: the control the program was posted for may well accept it.
+struct ArcTolerances {
+  double radius = 0;     // mm
+  double spiral_abs = 0; // mm
+  double spiral_rel = 0.001;
+};
+// rs274ngc's constants are per unit system: 0.00005 in for radii in both, and 2 * sqrt(2) *
+// 0.001 in or 2 * sqrt(2) * 0.01 mm for the spiral.
+ArcTolerances arc_tolerances(bool inch) {
+  if (inch) return {0.00005 * 25.4, 2 * 0.001 * std::numbers::sqrt2 * 25.4};
+  return {0.00005 * 25.4, 2 * 0.01 * std::numbers::sqrt2};
+}
+bool radii_agree(double r1, double r2, const ArcTolerances& t) {
+  const double abs_err = std::abs(r1 - r2);
+  const double rel_err = abs_err / std::max(r1, r2);
+  return !(abs_err > 100 * t.spiral_abs || (rel_err > t.spiral_rel && abs_err > t.spiral_abs));
+}
 
 } // namespace
 
@@ -195,10 +212,15 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
     }
     const double mf = (ef + sf) / 2, ms = (es + ss) / 2;
     double half = std::hypot(mf - ef, ms - es);
-    const double tol = state_.inch ? 0.0005 * 25.4 : 0.001;
+    const double tol = arc_tolerances(state_.inch).radius;
     if (half - abs_r > tol) {
-      error(v.column['r' - 'a'], "arc radius too small to reach the end point");
-      return;
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "arc radius R%.4f is too small to reach the end point (half the chord is "
+                    "%.4f): taken as a half circle",
+                    abs_r / u, half / u);
+      warning(v.column['r' - 'a'], buf);
+      half = abs_r;
     }
     if (half / abs_r > 1 - 1e-12) half = abs_r;
     const double base = std::atan2(es - ss, ef - sf);
@@ -216,29 +238,20 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
       return;
     }
     const double of = v[fo].value_or(0) * u, os = v[so].value_or(0) * u;
-    if (arc_incremental_) {
-      cf = sf + of, cs = ss + os;
-    } else {
+    if (!arc_incremental_) {
       // G90.1: absolute centre, in program coordinates.
-      cf = of, cs = os;
-      if (!v.has(fo)) cf = sf;
-      if (!v.has(so)) cs = ss;
+      cf = v.has(fo) ? of : sf;
+      cs = v.has(so) ? os : ss;
+      if (!radii_agree(std::hypot(sf - cf, ss - cs), std::hypot(ef - cf, es - cs),
+                       arc_tolerances(state_.inch)))
+        spiral_warning(col, sf, ss, ef, es, cf, cs);
+    } else {
+      arc_centre_from_offsets(v, sf, ss, ef, es, of, os, cf, cs);
     }
-    const double r1 = std::hypot(sf - cf, ss - cs), r2 = std::hypot(ef - cf, es - cs);
-    if (r1 < kArcAbsToleranceMm || r2 < kArcAbsToleranceMm) {
+    const double min_radius = arc_tolerances(state_.inch).radius;
+    if (std::hypot(sf - cf, ss - cs) < min_radius || std::hypot(ef - cf, es - cs) < min_radius) {
       error(col, "arc of zero radius");
       return;
-    }
-    const double abs_err = std::abs(r1 - r2);
-    const double rel_err = abs_err / std::max(r1, r2);
-    if (abs_err > kArcAbsToleranceMm * 100 ||
-        (rel_err > kArcRelTolerance && abs_err > kArcAbsToleranceMm)) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "radius to end of arc differs from radius to start: r1=%.4f r2=%.4f "
-                    "(mm); timed as a spiral",
-                    r1, r2);
-      error(col, buf);
     }
   }
   (void)n;
@@ -250,6 +263,51 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
   inverse_time_feed(arc_geometry(c).length, v);
   pos_ = end;
   emit(std::move(c));
+}
+
+void Interpreter::arc_centre_from_offsets(const BlockValues& v, double sf, double ss, double ef,
+                                          double es, double of, double os, double& cf, double& cs) {
+  // I/J/K are the offset from the start to the centre. Some posts write the offset from the
+  // centre to the start instead: when an arc fits only that way, and no arc before fitted only
+  // the standard way, the program is read that way from then on, with one warning.
+  const ArcTolerances t = arc_tolerances(state_.inch);
+  const int col = v.column['g' - 'a'];
+  const bool normal_fits =
+      radii_agree(std::hypot(of, os), std::hypot(ef - sf - of, es - ss - os), t);
+  const bool reversed_fits =
+      radii_agree(std::hypot(of, os), std::hypot(ef - sf + of, es - ss + os), t);
+  bool reversed = false;
+  if (normal_fits && !reversed_fits) {
+    ++arcs_fitting_only_standard_;
+  } else if (reversed_fits && !normal_fits) {
+    reversed = true;
+    if (!arc_offsets_reversed_) {
+      arc_offsets_reversed_ = true;
+      warning(col, arcs_fitting_only_standard_ == 0
+                       ? "arc centres fit only with I/J/K read from the centre to the start "
+                         "(centre = start - IJK), as some posts write them: this program's arcs "
+                         "are read that way"
+                       : "this arc fits only with I/J/K read from the centre to the start "
+                         "(centre = start - IJK): read that way");
+    }
+  } else if (normal_fits && reversed_fits) {
+    reversed = arc_offsets_reversed_ && arcs_fitting_only_standard_ == 0;
+  }
+  cf = reversed ? sf - of : sf + of;
+  cs = reversed ? ss - os : ss + os;
+  if (!normal_fits && !reversed_fits) spiral_warning(col, sf, ss, ef, es, cf, cs);
+}
+
+void Interpreter::spiral_warning(int column, double sf, double ss, double ef, double es, double cf,
+                                 double cs) {
+  const double u = unit();
+  const double r1 = std::hypot(sf - cf, ss - cs), r2 = std::hypot(ef - cf, es - cs);
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "radius to end of arc differs from radius to start: r1=%.4f r2=%.4f (program "
+                "units), beyond rs274ngc's tolerance; timed as a spiral",
+                r1 / u, r2 / u);
+  warning(column, buf);
 }
 
 void Interpreter::go_home(const BlockValues& v, int base) {

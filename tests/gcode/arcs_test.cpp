@@ -32,13 +32,17 @@ TEST_CASE("R-form arcs: positive R takes the short way, negative R the long way"
   CHECK(arc_geometry(m[4]).radius == doctest::Approx(6.0));
 }
 
-TEST_CASE("R-form arc too small to reach its end point is an error") {
+TEST_CASE("R-form arc too small to reach its end point: a warning, taken as a half circle") {
   const Toolpath p = run("G21 G0 X0 Y0\nG2 X10 Y0 R4 F100\nM2\n");
-  const auto e = with_severity(p, Severity::Error);
-  REQUIRE(e.size() == 1);
-  CHECK(e[0].line == 2);
-  CHECK(e[0].column == 11); // the R word
-  CHECK(of_kind(p, CanonKind::Arc).empty());
+  CHECK(errors(p) == 0);
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].line == 2);
+  CHECK(w[0].column == 11); // the R word
+  const auto arcs = of_kind(p, CanonKind::Arc);
+  REQUIRE(arcs.size() == 1);
+  CHECK(arcs[0].centre_first == doctest::Approx(5));
+  CHECK(arcs[0].centre_second == doctest::Approx(0).epsilon(1e-9));
 }
 
 TEST_CASE("full circles with IJK, and P extra turns with a helix") {
@@ -86,14 +90,48 @@ TEST_CASE("helices in every plane: G18 (ZX), G19 (YZ), G17 (XY)") {
   CHECK(half.x == doctest::Approx(6.0)); // halfway along the helix axis, from X10 to X2
 }
 
-TEST_CASE("radius to the end differing from the radius to the start is an error") {
+TEST_CASE("end radius off the start radius: silent within rs274ngc's tolerance, else a spiral") {
+  // rs274 (LinuxCNC 2.9) refuses an arc when |r1 - r2| exceeds 2*sqrt(2)*0.01 mm (0.0283 mm;
+  // 2*sqrt(2)*0.001 in in inch programs) and 0.1% of the radius, or 100 times that absolute
+  // limit. Measured with rs274: a quarter arc of radius 1 mm is refused from r2 = 1.02829 mm.
+  CHECK(warnings(run("G21 G0 X0 Y0\nG3 X1 Y-1.0282 I1 J0 F100\nM2\n")) == 0);
+  CHECK(warnings(run("G21 G0 X0 Y0\nG3 X1 Y-1.0284 I1 J0 F100\nM2\n")) == 1);
+  // Inch: 0.0028 in passes, 0.0029 in does not.
+  CHECK(warnings(run("G20 G0 X0 Y0\nG3 X1 Y-1.0028 I1 J0 F10\nM2\n")) == 0);
+  CHECK(warnings(run("G20 G0 X0 Y0\nG3 X1 Y-1.0029 I1 J0 F10\nM2\n")) == 1);
+  // The relative limit: 0.05 mm off a 100 mm radius is within 0.1%.
+  CHECK(warnings(run("G21 G0 X0 Y0\nG3 X100 Y-100.05 I100 J0 F100\nM2\n")) == 0);
+  // Inch posts rounding to 4 decimals: 0.00008 in (0.002 mm) off, no word at all.
+  CHECK(warnings(run("G20 G0 X0.1234 Y0\nG2 X0.6234 Y0.00008 I0.25 J0 F10\nM2\n")) == 0);
+
+  // Far off: a warning naming both radii, never an error, and the arc is timed as a spiral.
   const Toolpath p = run("G21 G0 X0 Y0 Z0\nG2 X10 Y0 I4 J0 F100\nM2\n");
-  const auto e = with_severity(p, Severity::Error);
-  REQUIRE(e.size() == 1);
-  CHECK(e[0].line == 2);
-  CHECK(e[0].message.find("r1=4.0000 r2=6.0000") != std::string::npos);
-  // Within LinuxCNC's tolerance (0.001 relative) the arc is accepted.
-  CHECK(errors(run("G21 G0 X0 Y0 Z0\nG2 X10.004 Y0 I5 J0 F100\nM2\n")) == 0);
+  CHECK(errors(p) == 0);
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].line == 2);
+  CHECK(w[0].message.find("r1=4.0000 r2=6.0000") != std::string::npos);
+  const auto arcs = of_kind(p, CanonKind::Arc);
+  REQUIRE(arcs.size() == 1);
+  CHECK(arcs[0].end.x == doctest::Approx(10));
+}
+
+TEST_CASE("I/J written from the centre to the start: detected, warned about once, followed") {
+  // A post that writes I/J as (start - centre): every arc fits only that way.
+  const Toolpath p = run("G21 G0 X0 Y0\nG2 X10 Y0 I-5 J0 F100\nG2 X20 Y0 I-5 J0\n"
+                         "G3 X30 Y0 I-5 J0\nM2\n");
+  CHECK(errors(p) == 0);
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].line == 2);
+  CHECK(w[0].message.find("centre to the start") != std::string::npos);
+  const auto arcs = of_kind(p, CanonKind::Arc);
+  REQUIRE(arcs.size() == 3);
+  CHECK(arcs[0].centre_first == doctest::Approx(5));
+  CHECK(arcs[1].centre_first == doctest::Approx(15));
+  CHECK(arcs[2].centre_first == doctest::Approx(25));
+  // Read the standard way, the same arcs fit: no switch, no warning.
+  CHECK(warnings(run("G21 G0 X0 Y0\nG2 X10 Y0 I5 J0 F100\nG2 X20 Y0 I5 J0\nM2\n")) == 0);
 }
 
 TEST_CASE("arc P must be a positive integer, an arc needs offsets or R") {

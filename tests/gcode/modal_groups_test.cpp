@@ -30,6 +30,83 @@ TEST_CASE("motion group: G80 cancels, then axis words alone are an error") {
   CHECK(with_severity(p, Severity::Error)[0].line == 4);
 }
 
+TEST_CASE("motion group, Fanuc family: canned cycles are group 09, G80 leaves G0/G1 in force") {
+  for (const char* dialect : {"fanuc", "haas", "mach3", "siemens"}) {
+    CAPTURE(dialect);
+    const Toolpath p = run("G21\nG1 X1 F100\nG81 X5 Z-1 R1\nG80\nX2\nG0 X3\nG81 X4 Z-1 R1\n"
+                           "G80\nY9\nM30\n",
+                           dialect);
+    CHECK(errors(p) == 0);
+    auto on_line = [&](int line) {
+      std::vector<CanonCommand> out;
+      for (const CanonCommand& c : move_commands(p))
+        if (c.line == line) out.push_back(c);
+      return out;
+    };
+    // After the first G80 the G1 before the cycle moves X2; after the second, the G0.
+    const auto x2 = on_line(4), y9 = on_line(8);
+    REQUIRE(x2.size() == 1);
+    CHECK(x2[0].kind == CanonKind::Feed);
+    CHECK(x2[0].end.x == doctest::Approx(2));
+    REQUIRE(y9.size() == 1);
+    CHECK(y9[0].kind == CanonKind::Traverse);
+    CHECK(y9[0].end.y == doctest::Approx(9));
+  }
+}
+
+TEST_CASE("motion group: the safety line G00 G17 G21 G40 G49 G80 G90 runs whole") {
+  // rs274 runs it: G80 beside G0 gives way to G0. Every other code of the line takes effect.
+  for (const char* dialect : {"linuxcnc", "fanuc", "haas"}) {
+    CAPTURE(dialect);
+    const Toolpath p = run("G20\nG91\nG00 G17 G21 G40 G49 G80 G90\nX1 Y2\nM30\n", dialect);
+    CHECK(errors(p) == 0);
+    CHECK(warnings(p) == 0);
+    // As in rs274, G0 alone is a move to where the tool is; then X1 Y2.
+    const auto m = move_commands(p);
+    REQUIRE(m.size() == 2);
+    CHECK(m[1].kind == CanonKind::Traverse);
+    CHECK(m[1].end.x == doctest::Approx(1)); // G21 and G90 took effect: 1 mm, absolute
+    CHECK(!m[1].state.inch);
+  }
+}
+
+TEST_CASE("G91 G28 G53 Z0: a warning, and the return home the post meant") {
+  const Toolpath p = run("G21 G0 Z5\nG91 G28 G53 Z0\nM30\n", "fanuc");
+  CHECK(errors(p) == 0);
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].message.find("G53") != std::string::npos);
+  const auto m = move_commands(p);
+  REQUIRE(m.size() == 3); // G0 Z5, the intermediate point (no move under G91 Z0), then home
+  CHECK(m.back().end.z == doctest::Approx(0));
+}
+
+TEST_CASE("two codes of one modal group: Fanuc takes the last, LinuxCNC refuses the block") {
+  const Toolpath fanuc = run("G21\nG0 G1 X1 F100\nM30\n", "fanuc");
+  CHECK(errors(fanuc) == 0);
+  REQUIRE(warnings(fanuc) == 1);
+  const auto m = move_commands(fanuc);
+  REQUIRE(m.size() == 1);
+  CHECK(m[0].kind == CanonKind::Feed);
+}
+
+TEST_CASE("with no dialect named or recognised, what only LinuxCNC refuses is a warning") {
+  // No dialect given, nothing in the text names one: the default (linuxcnc) relaxes.
+  const Toolpath p = run("G21\nG1 X1 F100\nG81 X5 Z-1 R1\nG80\nX2\nG0 G1 X3\nM30\n", "");
+  CHECK(p.result.dialect_origin == DialectOrigin::Default);
+  CHECK(errors(p) == 0);
+  CHECK(warnings(p) == 2);
+  const auto m = move_commands(p);
+  REQUIRE(m.size() >= 2);
+  CHECK(m[m.size() - 2].end.x == doctest::Approx(2));
+  CHECK(m[m.size() - 2].kind == CanonKind::Feed);
+  CHECK(m.back().end.x == doctest::Approx(3));
+  CHECK(m.back().kind == CanonKind::Feed);
+  // Named, LinuxCNC's refusal stands.
+  const Toolpath strict = run("G21\nG1 X1 F100\nG80\nX2\nM30\n", "linuxcnc");
+  CHECK(errors(strict) == 1);
+}
+
 TEST_CASE("two codes of one modal group on a line are an error and the block is skipped") {
   const Toolpath p = run("G21\nG0 G1 X1 F100\nG17 G18\nG90 G91 X3\nG20 G21\nX7\nM2\n");
   const auto e = with_severity(p, Severity::Error);

@@ -66,6 +66,9 @@ inline std::vector<Diagnostic> with_severity(const Toolpath& path, Severity seve
 inline std::size_t errors(const Toolpath& path) {
   return with_severity(path, Severity::Error).size();
 }
+inline std::size_t warnings(const Toolpath& path) {
+  return with_severity(path, Severity::Warning).size();
+}
 
 // Canonical lines as format_canon prints them, for expected move lists in tests.
 inline std::string T(double x, double y, double z) {

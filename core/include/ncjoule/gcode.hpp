@@ -96,7 +96,14 @@ struct Dialect {
   bool star_block_end = false;          // '*' ends a block (Heidenhain ISO)
   bool arc_centre_absolute = false;     // I/J/K are the absolute arc centre (Heidenhain ISO)
   bool g70_g71_units = false;           // G70 inch, G71 mm (Heidenhain ISO)
-  std::string comment_open = "(";       // what the annotator writes
+  // Canned cycles are a modal group of their own (Fanuc's group 09, as on Haas, Mach3 and
+  // Sinumerik in ISO mode): G80 cancels the cycle and the G0/G1/G2/G3 in force before it moves
+  // the axis words that follow. In LinuxCNC G80 is motion mode "none".
+  bool canned_cycle_group = false;
+  // Two G codes of one modal group in a block: the last one counts (Fanuc), where LinuxCNC
+  // refuses the block.
+  bool last_code_of_group_wins = false;
+  std::string comment_open = "("; // what the annotator writes
   std::string comment_close = ")";
 };
 
@@ -106,6 +113,21 @@ std::vector<std::string> dialect_names();
 // Guesses the dialect from the text (O-number headers, M98, grbl $ lines, o-words, ...).
 // Returns "linuxcnc" when nothing is clear.
 Dialect detect_dialect(const SourceFile& source);
+
+// How the dialect of a run was chosen.
+enum class DialectOrigin : std::uint8_t {
+  Given,    // by the user or a profile
+  Detected, // from the program's text (what told is in DialectChoice::reason)
+  Default,  // nothing told: linuxcnc, with the controller-specific refusals relaxed to warnings
+};
+struct DialectChoice {
+  Dialect dialect;
+  DialectOrigin origin = DialectOrigin::Default;
+  std::string reason; // e.g. "O-number program header at line 2", "given"
+};
+DialectChoice choose_dialect(const SourceFile& source);
+// "linuxcnc (given)", "fanuc (detected: O-number program header at line 2)", ...
+std::string describe_dialect_choice(const DialectChoice& choice);
 
 // ---------------------------------------------------------------------------------------------
 // Canonical commands
@@ -240,6 +262,8 @@ struct InterpreterOptions {
 
 struct InterpretResult {
   Dialect dialect;
+  DialectOrigin dialect_origin = DialectOrigin::Given;
+  std::string dialect_reason; // what told the dialect (see DialectChoice)
   std::vector<Diagnostic> diagnostics;
   bool completed = false; // reached program end or end of file without a fatal error
   std::size_t blocks = 0; // blocks executed

@@ -41,7 +41,7 @@ void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
 
 std::optional<Dialect> dialect_from_option(const std::string& name) {
   if (auto d = find_dialect(name)) return d;
-  std::cerr << "ncjoule: unknown dialect '" << name << "'; known dialects:";
+  std::cerr << "ncjoule: unknown dialect '" << name << "'; known dialects: auto";
   for (const std::string& n : dialect_names())
     std::cerr << ' ' << n;
   std::cerr << '\n';

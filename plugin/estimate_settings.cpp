@@ -11,8 +11,9 @@ namespace ncjoule::cli {
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
   cmd.add_option("-m,--machine", s.machine, "Machine profile (.toml)")->required();
   cmd.add_option("--dialect", s.dialect,
-                 "Controller dialect (linuxcnc, fanuc, haas, grbl, mach3, siemens, heidenhain, "
-                 "reprap); default: the machine profile's, else detected from the file");
+                 "Controller dialect (auto, linuxcnc, fanuc, haas, grbl, mach3, siemens, "
+                 "heidenhain, reprap); default: the machine profile's (auto: detected from the "
+                 "file)");
   cmd.add_option("--stock", s.stock,
                  "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; default: the "
                  "job file's, else the bounding box of the cutting moves");
@@ -23,6 +24,13 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
                  "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
       ->allow_extra_args(false); // one tool per --tool, so the program's file name is not taken
+  cmd.add_option("-t,--tool-table", s.tool_table,
+                 "LinuxCNC tool table (.tbl): lengths for G43, and a tool for every entry with "
+                 "a diameter (its comment names the shape, else a flat end mill)");
+  cmd.add_option("--tool-units", s.tool_units,
+                 "Units of the tool table's lengths and diameters (the machine's units): mm or "
+                 "inch")
+      ->check(CLI::IsMember({"mm", "inch"}));
   cmd.add_option("--engine", s.engine, "Removal engine: dexel (default) or voxel")
       ->check(CLI::IsMember({"dexel", "voxel"}));
   cmd.add_option("--grid", s.grid_mm, "Removal grid spacing in mm (default: from the tools)")
@@ -45,9 +53,21 @@ bool load_machine(const std::string& path, MachineProfile& machine) {
 
 std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& exit_code) {
   EstimateOptions options;
-  if (!s.dialect.empty()) {
+  if (s.dialect == "auto") {
+    options.detect_dialect = true;
+  } else if (!s.dialect.empty()) {
     options.dialect = dialect_from_option(s.dialect);
     if (!options.dialect) return exit_code = kUsage, std::nullopt;
+  }
+  if (!s.tool_table.empty()) {
+    const auto table = read_source(s.tool_table);
+    if (!table) return exit_code = kInputError, std::nullopt;
+    std::vector<Diagnostic> diagnostics;
+    options.tool_table = parse_tool_table(*table, s.tool_units == "inch", diagnostics);
+    options.tool_table_path = s.tool_table;
+    print_diagnostics(diagnostics);
+    for (const Diagnostic& d : diagnostics)
+      if (d.severity == Severity::Error) return exit_code = kInputError, std::nullopt;
   }
   options.simulate_removal = !s.no_removal;
   if (!s.job.empty()) {

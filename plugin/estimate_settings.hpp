@@ -18,14 +18,16 @@ struct EstimateSettings {
   std::string stock;              // "box:..." or an STL file; empty: the box of the cutting moves
   std::string job;                // job file (TOML): stock and tool table
   std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
+  std::string tool_table;         // LinuxCNC .tbl
+  std::string tool_units = "mm";  // units of the tool table
   std::string engine = "dexel";
   double grid_mm = 0;
   bool no_removal = false;
   std::optional<double> co2_kg_per_kwh, price_per_kwh;
 };
 
-// Adds --machine, --dialect, --stock, --job, --tool, --engine, --grid, --no-removal, --co2 and
-// --price to a subcommand.
+// Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --engine,
+// --grid, --no-removal, --co2 and --price to a subcommand.
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
 
 // Loads the machine profile; prints why and returns false when it is wrong.

@@ -37,8 +37,8 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
       error = error || d.severity == Severity::Error;
     if (p.estimate.failed)
       std::cerr << "ncjoule: " << p.source.path
-                << " cannot be estimated (see above); define the tools in the program's header "
-                   "comments, or use --no-removal\n";
+                << " cannot be estimated (see above); --no-removal estimates it without the "
+                   "material removal stage\n";
     if (error) status = kInputError;
   }
   return status;

@@ -170,15 +170,31 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
 
   std::optional<std::size_t> header_at;
   if (options.header) header_at = header_position(lines);
+  WriteStyle header_style = style;
+  header_style.max_line_length = std::min(style.max_line_length, kHeaderWidth);
+  // Where each source line lands in the output: old header lines leave, the new header comes in
+  // at header_at. The header's length does not depend on the line numbers it names.
+  std::vector<std::string> header;
+  if (header_at) {
+    header = header_lines(estimate, machine, header_style, [](int line) { return line; });
+    std::vector<int> output_line(n + 1, 0);
+    int next = 1;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i == *header_at) next += static_cast<int>(header.size());
+      output_line[i] = next;
+      if (!lines.old_header[i]) ++next;
+    }
+    header = header_lines(estimate, machine, header_style, [&](int line) {
+      return line >= 1 && static_cast<std::size_t>(line) <= n ? output_line[line - 1] : line;
+    });
+  }
 
   std::string out;
   out.reserve(source.text.size() + source.text.size() / 2 + 1024);
   for (std::size_t i = 0; i < n; ++i) {
     if (header_at && *header_at == i) {
-      WriteStyle header_style = style;
-      header_style.max_line_length = std::min(style.max_line_length, kHeaderWidth);
       const std::string_view eol = header_eol(lines, i);
-      for (const std::string& h : header_lines(estimate, machine, header_style)) {
+      for (const std::string& h : header) {
         out += h;
         out += eol;
       }

@@ -54,6 +54,11 @@ Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
   if (!file.empty()) g.fields.push_back(field("PROFILE", safe_token(file, 60)));
   g.fields.push_back(field("MODEL", std::string(model_name(machine.power.model))));
   g.fields.push_back(field("DIALECT", safe_token(estimate.dialect.name, 20)));
+  g.fields.push_back(field("DIALECT_FROM",
+                           estimate.toolpath.result.dialect_origin == DialectOrigin::Given ? "given"
+                           : estimate.toolpath.result.dialect_origin == DialectOrigin::Detected
+                               ? "detected"
+                               : "default"));
   g.fields.push_back(field("REMOVAL", estimate.removal ? "simulated" : "off"));
   return g;
 }
@@ -91,6 +96,61 @@ Group legend() {
   return g;
 }
 
+// Text a controller reads safely inside a comment: letters, digits, space and . , = _ - only.
+std::string safe_text(std::string_view text) {
+  std::string out;
+  for (char c : text) {
+    const bool keep = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+                      c == '.' || c == ',' || c == '-' || c == '=' || c == '_';
+    const char put = keep ? c : ' ';
+    if (put == ' ' && (out.empty() || out.back() == ' ')) continue;
+    out += put;
+  }
+  while (!out.empty() && out.back() == ' ')
+    out.pop_back();
+  return out;
+}
+
+// What the user should know before trusting the numbers: the tools that were not simulated, and
+// the program's warnings and errors, one line each (the same message once, with its count), the
+// first few of them.
+std::vector<std::string> warning_texts(const Estimate& estimate,
+                                       const std::function<int(int)>& line_in_output) {
+  constexpr std::size_t kMaxLines = 8;
+  std::vector<std::string> texts;
+  if (!estimate.unsimulated_tools.empty()) {
+    std::string tools = "TOOLS NOT SIMULATED";
+    for (int t : estimate.unsimulated_tools)
+      tools += " T" + std::to_string(t);
+    texts.push_back(tools + " - their moves remove nothing, describe them with --tool");
+  }
+  std::vector<std::pair<const Diagnostic*, int>> distinct; // first of each message, count
+  for (const Diagnostic& d : estimate.diagnostics) {
+    if (d.severity == Severity::Note) continue;
+    auto same = std::find_if(distinct.begin(), distinct.end(), [&](const auto& x) {
+      return x.first->message == d.message && x.first->severity == d.severity;
+    });
+    if (same != distinct.end())
+      ++same->second;
+    else
+      distinct.push_back({&d, 1});
+  }
+  std::size_t shown = 0;
+  for (const auto& [d, count] : distinct) {
+    if (texts.size() >= kMaxLines) break;
+    std::string text = d->severity == Severity::Error ? "ERROR " : "";
+    if (d->line > 0) text += "L" + std::to_string(line_in_output(d->line)) + " ";
+    text += safe_text(d->message);
+    if (count > 1) text += " - " + std::to_string(count) + " times";
+    texts.push_back(text);
+    ++shown;
+  }
+  if (shown < distinct.size())
+    texts.push_back("and " + std::to_string(distinct.size() - shown) +
+                    " more - ncjoule estimate lists them all");
+  return texts;
+}
+
 std::size_t comment_length(std::size_t content_length, const WriteStyle& style) {
   return style.comment.open.size() + content_length + 4 + 6 + style.comment.close.size();
 }
@@ -118,11 +178,22 @@ void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>&
 } // namespace
 
 std::vector<std::string> header_lines(const Estimate& estimate, const MachineProfile& machine,
-                                      const WriteStyle& style) {
+                                      const WriteStyle& style,
+                                      const std::function<int(int)>& line_in_output) {
   std::vector<std::string> lines;
   for (const Group& g : {totals(estimate), components(estimate), machine_used(estimate, machine),
                          constants(machine), legend()})
     wrap(g, style, lines);
+  // One line per warning, cut to the line length: a warning is read, not parsed.
+  for (std::string text : warning_texts(estimate, line_in_output)) {
+    std::string content = "NCJ WARN " + text;
+    while (comment_length(content.size(), style) > style.max_line_length && !content.empty())
+      content.pop_back();
+    while (!content.empty() && content.back() == ' ')
+      content.pop_back();
+    if (style.upper_case) to_upper(content);
+    lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
+  }
   return lines;
 }
 

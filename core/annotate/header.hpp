@@ -2,6 +2,7 @@
 // and the machine and constants the prediction used.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,8 +14,10 @@ namespace ncjoule::annotation {
 
 // The header's lines (marked comments, without line endings), each within the style's line
 // length: a group of fields that does not fit on one line continues on the next, under the same
-// label.
+// label. Warnings name the line they concern as `line_in_output` maps it (1-based source line to
+// 1-based line of the annotated file); their number of lines does not depend on it.
 std::vector<std::string> header_lines(const Estimate& estimate, const MachineProfile& machine,
-                                      const WriteStyle& style);
+                                      const WriteStyle& style,
+                                      const std::function<int(int)>& line_in_output);
 
 } // namespace ncjoule::annotation

@@ -21,7 +21,9 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.file = source.path;
   InterpreterOptions interpreter;
   interpreter.dialect = options.dialect;
-  if (!interpreter.dialect) interpreter.dialect = find_dialect(machine.dialect);
+  if (!interpreter.dialect && !options.detect_dialect)
+    interpreter.dialect = find_dialect(machine.dialect); // "auto" finds none: detected
+  interpreter.fallback_dialect = find_dialect(machine.fallback_dialect);
   interpreter.tools = options.tool_table;
 
   // Stage times go to the log (-v): the benchmarks read them.
@@ -32,20 +34,26 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   logger().info("interpret: {} blocks, {} commands in {:.3f} s", e.toolpath.result.blocks,
                 e.toolpath.commands.size(), seconds_since(t));
 
-  // Tools come from the program's header comments; removal needs every tool it uses.
-  e.tools = parse_tool_comments(source, e.diagnostics);
+  // Tools: the tool table, then the program's header comments, then the job file and the
+  // command line, each replacing the one before for the same number.
+  std::map<int, Tool> described =
+      tools_from_table(options.tool_table, e.diagnostics, options.tool_table_path);
+  for (auto& [number, tool] : parse_tool_comments(source, e.diagnostics))
+    described[number] = tool;
   for (const auto& [number, tool] : options.tools)
-    e.tools[number] = tool;
+    described[number] = tool;
   std::optional<StockSpec> stock;
   if (options.simulate_removal) {
-    std::vector<Diagnostic> missing =
-        check_tools_defined(e.toolpath.commands, e.tools, source.path);
-    if (!missing.empty()) {
-      e.diagnostics.insert(e.diagnostics.end(), missing.begin(), missing.end());
-      e.failed = true;
-      return e;
-    }
+    ToolAssignment assignment = assign_tools(
+        e.toolpath.commands, described,
+        options.default_tool ? options.default_tool : machine.default_tool, source.path);
+    e.tools = std::move(assignment.tools);
+    e.unsimulated_tools = std::move(assignment.unsimulated);
+    e.diagnostics.insert(e.diagnostics.end(), assignment.diagnostics.begin(),
+                         assignment.diagnostics.end());
     stock = options.stock ? *options.stock : StockSpec{};
+  } else {
+    e.tools = std::move(described);
   }
   PlanOptions plan_options;
   if (stock && !e.tools.empty()) {

@@ -59,40 +59,38 @@ struct JobReader {
       if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
         say(Severity::Warning, &value, where + std::string(key.str()), "unknown key, ignored");
     }
-    Tool tool;
+    ToolFields fields;
     const toml::node* number = t->get("number");
     if (!number || !number->is_integer() || number->value<std::int64_t>() < 0)
       return error(number ? number : &node, where + "number",
                    "must be a whole tool number (e.g. number = 1)");
-    tool.number = int(*number->value<std::int64_t>());
+    fields.number = int(*number->value<std::int64_t>());
     const std::string tool_name =
-        "tool[" + std::to_string(index + 1) + "] (T" + std::to_string(tool.number) + ").";
+        "tool[" + std::to_string(index + 1) + "] (T" + std::to_string(fields.number) + ").";
     const toml::node* type = t->get("type");
-    const std::optional<ToolShape> shape = type && type->is_string()
-                                               ? tool_shape_from_name(*type->value<std::string>())
-                                               : std::nullopt;
-    if (!shape)
+    if (!type || !type->is_string() || !tool_shape_from_name(*type->value<std::string>()))
       return error(type ? type : &node, tool_name + "type",
                    "must be one of \"flat\", \"ball\", \"bullnose\", \"drill\", \"chamfer\"");
-    tool.shape = *shape;
+    fields.type = *type->value<std::string>();
     const std::optional<double> diameter = this->number(*t, "diameter_mm", tool_name);
     if (!diameter || !(*diameter > 0))
       return error(t->get("diameter_mm") ? t->get("diameter_mm") : &node, tool_name + "diameter_mm",
                    "must be given, in mm, above 0");
-    tool.diameter_mm = *diameter;
-    if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = tool.diameter_mm / 2;
-    if (tool.shape == ToolShape::Chamfer) tool.tip_angle_deg = 90;
-    if (auto v = this->number(*t, "corner_radius_mm", tool_name)) tool.corner_radius_mm = *v;
-    if (auto v = this->number(*t, "point_angle_deg", tool_name)) tool.tip_angle_deg = *v;
-    if (auto v = this->number(*t, "tip_diameter_mm", tool_name)) tool.tip_diameter_mm = *v;
-    if (auto v = this->number(*t, "flute_length_mm", tool_name)) tool.cutting_length_mm = *v;
-    if (auto v = this->number(*t, "shank_diameter_mm", tool_name)) tool.shank_diameter_mm = *v;
+    fields.diameter_mm = *diameter;
+    fields.corner_radius_mm = this->number(*t, "corner_radius_mm", tool_name);
+    fields.point_angle_deg = this->number(*t, "point_angle_deg", tool_name);
+    fields.tip_diameter_mm = this->number(*t, "tip_diameter_mm", tool_name);
+    fields.flute_length_mm = this->number(*t, "flute_length_mm", tool_name);
+    fields.shank_diameter_mm = this->number(*t, "shank_diameter_mm", tool_name);
     if (const toml::node* d = t->get("description"); d && d->is_string())
-      tool.description = *d->value<std::string>();
+      fields.description = *d->value<std::string>();
     else
-      tool.description = std::string(tool_shape_name(tool.shape)) + " from " + path;
-    if (const std::string problem = tool_problem(tool); !problem.empty())
-      return error(&node, tool_name.substr(0, tool_name.size() - 1), problem);
+      fields.description =
+          std::string(tool_shape_name(*tool_shape_from_name(fields.type))) + " from " + path;
+    std::string problem;
+    const std::optional<Tool> made = make_tool(fields, &problem);
+    if (!made) return error(&node, tool_name.substr(0, tool_name.size() - 1), problem);
+    const Tool& tool = *made;
     if (job.tools.count(tool.number))
       return error(&node, tool_name.substr(0, tool_name.size() - 1),
                    "tool T" + std::to_string(tool.number) + " is defined twice");

@@ -97,6 +97,18 @@ std::string lower(std::string_view s) {
   return out;
 }
 
+// ncjoule's own annotations ("(NCJ ... CK=XXXXXX)", "; NCJ ...") name the dialect they were
+// written for: they must not tell it again. Expects lower case.
+std::string without_annotations(std::string line) {
+  for (std::size_t at; (at = line.find("(ncj ")) != std::string::npos;) {
+    const std::size_t close = line.find(')', at);
+    line.erase(at, close == std::string::npos ? std::string::npos : close - at + 1);
+  }
+  for (const char* marker : {";ncj ", "; ncj "})
+    if (const std::size_t at = line.find(marker); at != std::string::npos) line.erase(at);
+  return line;
+}
+
 } // namespace
 
 std::optional<Dialect> find_dialect(std::string_view name) {
@@ -132,7 +144,7 @@ DialectChoice choose_dialect(const SourceFile& source) {
     return l.find(what) != std::string::npos;
   };
   for (std::size_t i = 0; i < limit; ++i) {
-    std::string l = lower(source.line_text(i));
+    std::string l = without_annotations(lower(source.line_text(i)));
     const std::size_t first = l.find_first_not_of(" \t");
     if (first == std::string::npos) continue;
     l.erase(0, first);

@@ -141,9 +141,12 @@ int BlockValues::g_column(int code) const {
 Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& options,
                          const CanonSink& sink)
     : source_(source), options_(options), sink_(sink), tools_(options.tools) {
-  const DialectChoice choice = options.dialect
-                                   ? DialectChoice{*options.dialect, DialectOrigin::Given, "given"}
-                                   : choose_dialect(source);
+  DialectChoice choice = options.dialect
+                             ? DialectChoice{*options.dialect, DialectOrigin::Given, "given"}
+                             : choose_dialect(source);
+  if (choice.origin == DialectOrigin::Default && options.fallback_dialect)
+    choice = {*options.fallback_dialect, DialectOrigin::Given,
+              "the machine's control; nothing in the program names another"};
   dialect_ = choice.dialect;
   // With no dialect named or recognised, what only LinuxCNC refuses is a warning: the program
   // may well be written for another control.

@@ -34,17 +34,22 @@ MachineProfile parse_profile(std::string_view text, const std::string& path) {
   profile.source_path = path;
   profile.name = root.string("name");
   if (profile.name.empty()) root.fail("name", "must not be empty");
-  profile.dialect = root.string("dialect");
-  if (!find_dialect(profile.dialect)) {
-    std::string known;
-    for (const std::string& name : dialect_names())
-      known += (known.empty() ? "" : ", ") + name;
+  std::string known;
+  for (const std::string& name : dialect_names())
+    known += (known.empty() ? "" : ", ") + name;
+  profile.dialect = root.optional_string("dialect").value_or("auto");
+  if (profile.dialect != "auto" && !find_dialect(profile.dialect))
     root.fail("dialect",
-              "\"" + profile.dialect + "\" is not a dialect ncjoule knows (" + known + ")");
-  }
+              "\"" + profile.dialect + "\" is not a dialect ncjoule knows (auto, " + known + ")");
+  profile.fallback_dialect = root.optional_string("fallback_dialect").value_or("");
+  if (!profile.fallback_dialect.empty() && !find_dialect(profile.fallback_dialect))
+    root.fail("fallback_dialect", "\"" + profile.fallback_dialect +
+                                      "\" is not a dialect ncjoule knows (" + known + ")");
   read_source(root, "profile", profile.sources);
   profile.kinematics = read_kinematics(root.table("kinematics"), profile.sources);
   profile.power = read_power(root.table("power"), profile.sources);
+  if (auto tool = root.optional_table("default_tool"))
+    profile.default_tool = read_default_tool(*tool, profile.sources);
   root.finish();
   return profile;
 }

@@ -16,6 +16,10 @@ Kinematics read_kinematics(TableReader kinematics, std::vector<std::string>& sou
 // [power] with [power.pavanaskar] and/or [power.zhou], as its `model` needs them.
 PowerConstants read_power(TableReader power, std::vector<std::string>& sources);
 
+// [default_tool]: type = "flat" | "ball" | "bullnose" | "drill" | "chamfer", diameter_mm, and
+// corner_radius_mm, point_angle_deg, tip_diameter_mm as the type needs them.
+Tool read_default_tool(TableReader tool, std::vector<std::string>& sources);
+
 // Reads the table's `source` string and records it as "<table>: <source>".
 void read_source(TableReader& table, std::string_view table_name,
                  std::vector<std::string>& sources);

@@ -103,6 +103,17 @@ double TableReader::number(std::string_view key, Range range) {
   return checked(key, *node, 1.0, range);
 }
 
+std::optional<double> TableReader::optional_number(std::string_view key, Range range) {
+  const toml::node* node = find(key);
+  if (!node) return std::nullopt;
+  return checked(key, *node, 1.0, range);
+}
+
+std::optional<std::string> TableReader::optional_string(std::string_view key) {
+  if (!find(key)) return std::nullopt;
+  return string(key);
+}
+
 std::string TableReader::string(std::string_view key) {
   const toml::node* node = find(key);
   if (!node) fail(key, "missing");

@@ -29,7 +29,9 @@ public:
   std::optional<double> optional_quantity(std::string_view stem, Dimension dimension, Range range);
   // A number whose unit is implied by the model it belongs to (Zhou's c3, c4, d1..d4).
   double number(std::string_view key, Range range);
+  std::optional<double> optional_number(std::string_view key, Range range);
   std::string string(std::string_view key);
+  std::optional<std::string> optional_string(std::string_view key);
   bool boolean(std::string_view key);
   // One of the given words (case-sensitive); the error lists them.
   std::string choice(std::string_view key, std::initializer_list<std::string_view> words);

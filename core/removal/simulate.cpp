@@ -83,8 +83,6 @@ RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const 
   auto diag = [&](Severity s, int line, std::string message) {
     result.diagnostics.push_back({s, options.source_path, line, 0, std::move(message)});
   };
-  for (Diagnostic& d : check_tools_defined(commands, tools, options.source_path))
-    result.diagnostics.push_back(std::move(d));
   for (const auto& [number, tool] : tools)
     if (const std::string problem = tool_problem(tool); !problem.empty())
       diag(Severity::Error, 0, "tool T" + std::to_string(number) + " " + problem);

@@ -224,28 +224,4 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source,
   return tools;
 }
 
-std::vector<Diagnostic> check_tools_defined(const std::vector<CanonCommand>& commands,
-                                            const std::map<int, Tool>& tools,
-                                            std::string_view file) {
-  std::map<int, int> first_use; // tool -> 0-based line
-  for (const CanonCommand& c : commands) {
-    const bool move = c.kind == CanonKind::Traverse || c.kind == CanonKind::Feed ||
-                      c.kind == CanonKind::Arc || c.kind == CanonKind::Probe;
-    if (move && !tools.count(c.state.tool)) first_use.emplace(c.state.tool, c.line);
-  }
-  std::vector<Diagnostic> out;
-  for (const auto& [tool, line] : first_use) {
-    std::string message =
-        tool == 0 ? "moves with no tool selected (T0): no tool 0 is defined, so they remove "
-                    "nothing; select a tool or define tool 0"
-                  : "tool T" + std::to_string(tool) +
-                        " is used but defined nowhere (no tool table entry and no CAM tool "
-                        "comment describes it): its moves remove nothing";
-    out.push_back({Severity::Error, std::string(file), line + 1, 0, std::move(message)});
-  }
-  std::sort(out.begin(), out.end(),
-            [](const Diagnostic& a, const Diagnostic& b) { return a.line < b.line; });
-  return out;
-}
-
 } // namespace ncjoule

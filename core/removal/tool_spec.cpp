@@ -42,6 +42,34 @@ std::optional<ToolShape> tool_shape_from_name(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<Tool> make_tool(const ToolFields& f, std::string* error) {
+  auto fail = [&](std::string message) -> std::optional<Tool> {
+    if (error) *error = std::move(message);
+    return std::nullopt;
+  };
+  const auto shape = tool_shape_from_name(f.type);
+  if (!shape)
+    return fail("type: '" + f.type + "' is not one of flat, ball, bullnose, drill, chamfer");
+  if (!(f.diameter_mm > 0) || !std::isfinite(f.diameter_mm))
+    return fail("diameter_mm: must be given, in mm, above 0");
+  Tool tool;
+  tool.number = f.number;
+  tool.shape = *shape;
+  tool.diameter_mm = f.diameter_mm;
+  if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = tool.diameter_mm / 2;
+  if (tool.shape == ToolShape::Chamfer) tool.tip_angle_deg = 90;
+  if (f.corner_radius_mm) tool.corner_radius_mm = *f.corner_radius_mm;
+  if (f.point_angle_deg) tool.tip_angle_deg = *f.point_angle_deg;
+  if (f.tip_diameter_mm) tool.tip_diameter_mm = *f.tip_diameter_mm;
+  if (f.flute_length_mm) tool.cutting_length_mm = *f.flute_length_mm;
+  if (f.shank_diameter_mm) tool.shank_diameter_mm = *f.shank_diameter_mm;
+  tool.description =
+      f.description.empty() ? std::string(tool_shape_name(tool.shape)) : f.description;
+  if (const std::string problem = tool_problem(tool); !problem.empty())
+    return fail("tool T" + std::to_string(tool.number) + " " + problem);
+  return tool;
+}
+
 std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error) {
   auto fail = [&](std::string message) -> std::optional<Tool> {
     if (error) *error = std::move(message);
@@ -50,46 +78,43 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error) {
   const std::vector<std::string_view> f = split(text, ':');
   if (f.size() < 3)
     return fail("a tool is N:TYPE:DIAMETER, e.g. 1:flat:6, 2:ball:6, 3:drill:6.8:118");
-  Tool tool;
+  ToolFields fields;
   double number = 0;
   if (!parse_number(f[0], number) || number < 0 || number != std::floor(number) || number > 1e6)
     return fail("tool number '" + std::string(f[0]) + "' is not a whole number");
-  tool.number = int(number);
+  fields.number = int(number);
+  fields.type = std::string(f[1]);
   const auto shape = tool_shape_from_name(f[1]);
   if (!shape)
     return fail("tool type '" + std::string(f[1]) +
                 "' is not one of flat, ball, bullnose, drill, chamfer");
-  tool.shape = *shape;
   double v[4] = {0, 0, 0, 0};
   for (std::size_t k = 2; k < f.size(); ++k)
     if (k - 2 >= 4 || !parse_number(f[k], v[k - 2]))
       return fail("tool value '" + std::string(f[k]) + "' is not a number");
   const std::size_t extras = f.size() - 3;
-  tool.diameter_mm = v[0];
-  switch (tool.shape) {
+  fields.diameter_mm = v[0];
+  switch (*shape) {
   case ToolShape::FlatEndMill:
   case ToolShape::BallEndMill:
     if (extras > 0) return fail("a flat or ball end mill takes only a diameter");
-    if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = tool.diameter_mm / 2;
     break;
   case ToolShape::BullNose:
     if (extras != 1) return fail("a bull nose is N:bullnose:DIAMETER:CORNER_RADIUS");
-    tool.corner_radius_mm = v[1];
+    fields.corner_radius_mm = v[1];
     break;
   case ToolShape::Drill:
     if (extras > 1) return fail("a drill is N:drill:DIAMETER[:POINT_ANGLE]");
-    tool.tip_angle_deg = extras ? v[1] : 118;
+    if (extras) fields.point_angle_deg = v[1];
     break;
   case ToolShape::Chamfer:
     if (extras > 2) return fail("a chamfer mill is N:chamfer:DIAMETER[:ANGLE[:TIP_DIAMETER]]");
-    tool.tip_angle_deg = extras ? v[1] : 90;
-    tool.tip_diameter_mm = extras > 1 ? v[2] : 0;
+    if (extras) fields.point_angle_deg = v[1];
+    if (extras > 1) fields.tip_diameter_mm = v[2];
     break;
   }
-  tool.description = std::string(text);
-  if (const std::string problem = tool_problem(tool); !problem.empty())
-    return fail("tool T" + std::to_string(tool.number) + " " + problem);
-  return tool;
+  fields.description = std::string(text);
+  return make_tool(fields, error);
 }
 
 } // namespace ncjoule

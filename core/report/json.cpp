@@ -85,6 +85,20 @@ Json estimate_document(const Estimate& e, const MachineProfile& machine) {
                       {"file", machine.source_path},
                       {"power_model", energy.model_description}};
   j["dialect"] = e.dialect.name;
+  j["dialect_origin"] = e.toolpath.result.dialect_origin == DialectOrigin::Given      ? "given"
+                        : e.toolpath.result.dialect_origin == DialectOrigin::Detected ? "detected"
+                                                                                      : "default";
+  j["dialect_reason"] = e.toolpath.result.dialect_reason;
+  Json tools = Json::array();
+  for (const auto& [number, tool] : e.tools)
+    tools.push_back(Json{{"number", number},
+                         {"shape", std::string(tool_shape_name(tool.shape))},
+                         {"diameter_mm", tool.diameter_mm},
+                         {"corner_radius_mm", tool.corner_radius_mm},
+                         {"tip_angle_deg", tool.tip_angle_deg},
+                         {"description", tool.description}});
+  j["tools"] = std::move(tools);
+  j["unsimulated_tools"] = e.unsimulated_tools;
   j["time_s"] = timeline.total_s;
   j["removed_mm3"] = energy.removed_mm3;
   j["stock"] = removal ? removal->stock_description : std::string("not simulated");

@@ -6,9 +6,8 @@
  *   ncjoule_context_set_stock(ctx, "box:0,0,-20,100,60,0");
  *   ncjoule_result* r = ncjoule_estimate_file(ctx, "part.ngc");
  *   ncjoule_totals t;
- *   if (r && ncjoule_result_totals(r, &t) == 0) printf("%.1f s, %.1f kJ\n", t.time_s, t.energy_j / 1000);
- *   ncjoule_result_destroy(r);
- *   ncjoule_context_destroy(ctx);
+ *   if (r && ncjoule_result_totals(r, &t) == 0) printf("%.1f s, %.1f kJ\n", t.time_s, t.energy_j /
+ * 1000); ncjoule_result_destroy(r); ncjoule_context_destroy(ctx);
  *
  * Functions that can fail return NULL or a non-zero int; ncjoule_last_error() then says why (the
  * text belongs to the calling thread and stays valid until its next failing call). Strings the
@@ -40,13 +39,13 @@ typedef struct ncjoule_totals {
 
 /* One source line that holds code, over every time it ran. */
 typedef struct ncjoule_block {
-  int line;          /* 1-based line in the file */
-  const char* kind;  /* "rapid", "feed", "arc", "tool_change", "dwell", "setting", ... */
+  int line;         /* 1-based line in the file */
+  const char* kind; /* "rapid", "feed", "arc", "tool_change", "dwell", "setting", ... */
   double start_s;
   double time_s;
   double removed_mm3;
-  double mrr_mm3_s;  /* mean over the line */
-  double power_w;    /* mean over the line */
+  double mrr_mm3_s; /* mean over the line */
+  double power_w;   /* mean over the line */
   double power_peak_w;
   double energy_j;
 } ncjoule_block;
@@ -65,15 +64,39 @@ void ncjoule_context_destroy(ncjoule_context* context);
 /* Stock for material removal: "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm) or an STL file path;
  * NULL or "" for the bounding box of the cutting moves. Returns 0, or -1 if the text is wrong. */
 int ncjoule_context_set_stock(ncjoule_context* context, const char* stock);
-/* 1 (default): simulate material removal (every tool must be defined in the program's header
- * comments); 0: estimate time and air-cutting energy only. */
+/* 1 (default): simulate material removal; 0: estimate time and air-cutting energy only. */
 void ncjoule_context_set_removal(ncjoule_context* context, int enabled);
-/* Controller dialect ("linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens"); NULL or "" to
- * use the profile's. Returns 0, or -1 for an unknown name. */
+/* Controller dialect ("auto", "linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens",
+ * "heidenhain", "reprap"); NULL or "" to use the profile's, "auto" to detect it from the program
+ * whatever the profile says. Returns 0, or -1 for an unknown name. */
 int ncjoule_context_set_dialect(ncjoule_context* context, const char* dialect);
 
-/* Estimates a program. NULL when it cannot be estimated (unreadable file, undefined tool);
- * warnings about the program are in the result's diagnostics. */
+/* Tools. Moves cut with the tool their program selects, described (later sources replacing
+ * earlier ones for the same number) by a LinuxCNC tool table, the program's CAM header comments,
+ * a job file, and the tools added here; moves with no tool selected use the only tool described,
+ * else the default tool (the profile's [default_tool] unless set here). A tool nothing describes
+ * is not fatal: its moves are timed without material removal, with a warning.
+ *
+ * A tool as on the command line: "N:TYPE:DIAMETER[:EXTRA[:EXTRA]]" in mm and degrees, TYPE one of
+ * flat, ball, bullnose (EXTRA: corner radius), drill (point angle), chamfer (angle, tip diameter);
+ * e.g. "1:flat:6", "4:drill:6.8:118". Returns 0, or -1 if the text is wrong. */
+int ncjoule_context_add_tool(ncjoule_context* context, const char* tool);
+/* Forgets the tools added with ncjoule_context_add_tool and the job file's. */
+void ncjoule_context_clear_tools(ncjoule_context* context);
+/* The tool of moves that select and describe none, as "TYPE:DIAMETER[...]" (no number), e.g.
+ * "flat:6"; NULL or "" for the machine profile's. Returns 0, or -1 if the text is wrong. */
+int ncjoule_context_set_default_tool(ncjoule_context* context, const char* tool);
+/* A LinuxCNC tool table (.tbl): lengths for G43, and a tool for each entry with a diameter;
+ * `inch` is 1 when its values are in inches. NULL or "" for none. Returns 0, or -1 if it cannot
+ * be read (ncjoule_last_error() says where). */
+int ncjoule_context_set_tool_table(ncjoule_context* context, const char* path, int inch);
+/* A job file (TOML: stock and [[tool]] entries, see the README); NULL or "" for none. Its stock
+ * replaces the context's, its tools those added before. Returns 0, or -1 if it cannot be read or
+ * is wrong (ncjoule_last_error() says where and why). */
+int ncjoule_context_set_job(ncjoule_context* context, const char* path);
+
+/* Estimates a program. NULL when it cannot be estimated (unreadable file); warnings and errors
+ * about the program are in the result's diagnostics. */
 ncjoule_result* ncjoule_estimate_file(ncjoule_context* context, const char* path);
 ncjoule_result* ncjoule_estimate_string(ncjoule_context* context, const char* text, size_t length,
                                         const char* name);
@@ -91,7 +114,8 @@ const char* ncjoule_result_json(const ncjoule_result* result);
 
 /* Annotates a program held in memory (old annotations are replaced). Returns the annotated text,
  * NUL-terminated, to be freed with ncjoule_free(), and its length in *out_length when not NULL;
- * NULL when the program cannot be estimated or has errors (see ncjoule_last_error()). */
+ * NULL when the program cannot be estimated (see ncjoule_last_error()). A program with errors its
+ * controller would refuse is annotated all the same, its header listing them. */
 char* ncjoule_annotate_string(ncjoule_context* context, const char* text, size_t length,
                               const char* name, size_t* out_length);
 /* Annotates the file at in_path into out_path (NULL or equal to in_path: in place). The output is

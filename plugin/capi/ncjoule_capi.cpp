@@ -70,11 +70,11 @@ std::optional<std::string> annotated_text(ncjoule_context* context, const std::s
   const ncjoule::SourceFile program = ncjoule::make_source(name, ncjoule::strip(text));
   const ncjoule::Estimate e =
       ncjoule::estimate_program(program, context->machine, context->options);
-  std::string errors;
-  for (const ncjoule::Diagnostic& d : e.diagnostics)
-    if (d.severity == ncjoule::Severity::Error) errors += "\n" + ncjoule::format_diagnostic(d);
-  if (e.failed || !errors.empty()) {
-    fail(name + " was not annotated" + errors);
+  if (e.failed) {
+    std::string errors;
+    for (const ncjoule::Diagnostic& d : e.diagnostics)
+      if (d.severity == ncjoule::Severity::Error) errors += "\n" + ncjoule::format_diagnostic(d);
+    fail(name + " could not be estimated" + errors);
     return std::nullopt;
   }
   return ncjoule::annotate(program, e, context->machine);
@@ -130,7 +130,8 @@ void ncjoule_context_set_removal(ncjoule_context* context, int enabled) {
 
 int ncjoule_context_set_dialect(ncjoule_context* context, const char* dialect) {
   if (!context) return fail("no context"), -1;
-  if (!dialect || !*dialect) {
+  context->options.detect_dialect = dialect && std::strcmp(dialect, "auto") == 0;
+  if (!dialect || !*dialect || context->options.detect_dialect) {
     context->options.dialect.reset();
     return 0;
   }
@@ -138,6 +139,72 @@ int ncjoule_context_set_dialect(ncjoule_context* context, const char* dialect) {
   if (!d) return fail(std::string("unknown dialect '") + dialect + "'"), -1;
   context->options.dialect = *d;
   return 0;
+}
+
+int ncjoule_context_add_tool(ncjoule_context* context, const char* tool) {
+  if (!context || !tool) return fail("no context or no tool"), -1;
+  std::string error;
+  const auto parsed = ncjoule::parse_tool_spec(tool, &error);
+  if (!parsed) return fail(std::string("bad tool '") + tool + "': " + error), -1;
+  context->options.tools[parsed->number] = *parsed;
+  return 0;
+}
+
+void ncjoule_context_clear_tools(ncjoule_context* context) {
+  if (context) context->options.tools.clear();
+}
+
+int ncjoule_context_set_default_tool(ncjoule_context* context, const char* tool) {
+  if (!context) return fail("no context"), -1;
+  if (!tool || !*tool) {
+    context->options.default_tool.reset();
+    return 0;
+  }
+  std::string error;
+  const auto parsed = ncjoule::parse_tool_spec(std::string("0:") + tool, &error);
+  if (!parsed) return fail(std::string("bad default tool '") + tool + "': " + error), -1;
+  context->options.default_tool = *parsed;
+  return 0;
+}
+
+int ncjoule_context_set_tool_table(ncjoule_context* context, const char* path, int inch) {
+  if (!context) return fail("no context"), -1;
+  return guarded<int>(-1, [&] {
+    if (!path || !*path) {
+      context->options.tool_table.clear();
+      context->options.tool_table_path.clear();
+      return 0;
+    }
+    auto text = read_file(path);
+    if (!text) return -1;
+    std::vector<ncjoule::Diagnostic> diagnostics;
+    ncjoule::ToolTable table = ncjoule::parse_tool_table(
+        ncjoule::make_source(path, std::move(*text)), inch != 0, diagnostics);
+    for (const ncjoule::Diagnostic& d : diagnostics)
+      if (d.severity == ncjoule::Severity::Error) return fail(ncjoule::format_diagnostic(d)), -1;
+    context->options.tool_table = std::move(table);
+    context->options.tool_table_path = path;
+    return 0;
+  });
+}
+
+int ncjoule_context_set_job(ncjoule_context* context, const char* path) {
+  if (!context) return fail("no context"), -1;
+  if (!path || !*path) return 0;
+  return guarded<int>(-1, [&] {
+    std::vector<ncjoule::Diagnostic> diagnostics;
+    const auto job = ncjoule::read_job_file(path, diagnostics);
+    if (!job) {
+      std::string why;
+      for (const ncjoule::Diagnostic& d : diagnostics)
+        if (d.severity == ncjoule::Severity::Error)
+          why += (why.empty() ? "" : "\n") + ncjoule::format_diagnostic(d);
+      return fail(why.empty() ? std::string("cannot read job file ") + path : why), -1;
+    }
+    if (job->stock) context->options.stock = job->stock;
+    context->options.tools = job->tools;
+    return 0;
+  });
 }
 
 ncjoule_result* ncjoule_estimate_file(ncjoule_context* context, const char* path) {

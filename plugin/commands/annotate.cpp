@@ -47,24 +47,28 @@ int run_annotate(const AnnotateCliOptions& o) {
   const SourceFile program = make_source(input->path, strip(input->text));
   const Estimate e = estimate_program(program, machine, *options);
   print_diagnostics(e.diagnostics);
-  bool errors = e.failed;
-  for (const Diagnostic& d : e.diagnostics)
-    if (d.severity == Severity::Error) errors = true;
-  if (errors) {
+  if (e.failed) {
     std::cerr << "ncjoule: " << program.path
-              << " was not annotated (see above); nothing was written"
-              << (e.failed ? ". Define the tools in the program's header comments, or use "
-                             "--no-removal"
-                           : "")
-              << '\n';
+              << " could not be estimated (see above); nothing was written\n";
     return kInputError;
   }
+  // Errors are what the controller itself would refuse: the program is still annotated (the
+  // header lists them), and the exit status says so.
+  bool errors = false;
+  for (const Diagnostic& d : e.diagnostics)
+    if (d.severity == Severity::Error) errors = true;
 
   AnnotateOptions annotate_options;
   annotate_options.header = !o.no_header;
   const std::string text = annotate(program, e, machine, annotate_options);
 
-  return write_program(o.file, o.output, o.in_place, text);
+  const int written = write_program(o.file, o.output, o.in_place, text);
+  if (written == kOk && errors) {
+    std::cerr << "ncjoule: " << program.path
+              << " has errors a controller would refuse (see above); annotated anyway\n";
+    return kInputError;
+  }
+  return written;
 }
 
 const Registration registration([](CLI::App& app, int& exit_code) {
@@ -78,8 +82,10 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_flag("-i,--in-place", options->in_place, "Replace the input file")->excludes(output);
   add_estimate_settings(*cmd, options->settings);
   cmd->add_flag("--no-header", options->no_header, "Leave out the summary header");
-  cmd->footer("Exit codes: 0 written; 1 bad command line; 2 bad input (nothing written); "
-              "3 the output could not be written (the target is untouched).");
+  cmd->footer("Exit codes: 0 written; 1 bad command line; 2 bad input: unreadable, or a program "
+              "with errors its controller would refuse (written all the same when it could be "
+              "estimated, its header listing them); 3 the output could not be written (the "
+              "target is untouched).");
   cmd->callback([options, &exit_code] { exit_code = run_annotate(*options); });
 });
 

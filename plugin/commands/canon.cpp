@@ -22,7 +22,7 @@ int run_canon(const CanonOptions& o) {
   auto source = read_source(o.file);
   if (!source) return kInputError;
   InterpreterOptions options;
-  if (!o.dialect.empty()) {
+  if (!o.dialect.empty() && o.dialect != "auto") {
     options.dialect = dialect_from_option(o.dialect);
     if (!options.dialect) return kUsage;
   }
@@ -58,8 +58,8 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       "canon", "Print the canonical motion stream in the form of `rs274 -g`, for diffing");
   cmd->add_option("file", options->file, "NC program (- for standard input)")->required();
   cmd->add_option("--dialect", options->dialect,
-                  "Controller dialect (linuxcnc, fanuc, haas, grbl, mach3, siemens); "
-                  "default: detected from the file");
+                  "Controller dialect (auto, linuxcnc, fanuc, haas, grbl, mach3, siemens, "
+                  "heidenhain, reprap); default: detected from the file");
   cmd->add_option("-t,--tool-table", options->tool_table, "LinuxCNC tool table (.tbl)");
   cmd->add_option("--tool-units", options->tool_units,
                   "Units of the tool table's lengths (the machine's units): mm or inch")

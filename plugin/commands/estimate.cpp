@@ -81,10 +81,15 @@ TimeBreakdown break_down(const Timeline& timeline) {
   return b;
 }
 
-void print_summary(const SourceFile& source, const MachineProfile& machine,
-                   const Timeline& timeline, const EnergyResult& energy, std::size_t block_count) {
+void print_summary(const SourceFile& source, const MachineProfile& machine, const Estimate& e) {
+  const Timeline& timeline = e.timeline;
+  const EnergyResult& energy = e.energy;
+  const std::size_t block_count = e.lines.size();
   const TimeBreakdown b = break_down(timeline);
   std::printf("%s on %s\n", source.path.c_str(), machine.name.c_str());
+  const InterpretResult& r = e.toolpath.result;
+  std::printf("  dialect     %s\n",
+              describe_dialect_choice({r.dialect, r.dialect_origin, r.dialect_reason}).c_str());
   std::printf("  model       %s\n", energy.model_description.c_str());
   std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(timeline.total_s).c_str(),
               timeline.total_s, block_count);
@@ -144,9 +149,8 @@ int run_estimate(const EstimateCliOptions& o) {
   if (e.failed) {
     print_diagnostics(e.diagnostics);
     std::cerr << "ncjoule: " << source->path
-              << " cannot be estimated (see above); define the "
-                 "tools in the program's header comments, a job file (--job) or with --tool, "
-                 "or use --no-removal\n";
+              << " cannot be estimated (see above); --no-removal estimates it without the "
+                 "material removal stage\n";
     return kInputError;
   }
   if (o.json) {
@@ -154,7 +158,7 @@ int run_estimate(const EstimateCliOptions& o) {
   } else if (o.csv) {
     std::cout << estimate_csv(e, *source);
   } else {
-    print_summary(*source, machine, e.timeline, e.energy, e.lines.size());
+    print_summary(*source, machine, e);
     if (e.removal)
       std::printf(
           "  stock       %s\n              %s engine, %.3f mm grid, %zu columns, %.1f MiB\n",
@@ -162,6 +166,12 @@ int run_estimate(const EstimateCliOptions& o) {
           e.removal->grid.dx, e.removal->grid.columns(),
           double(e.removal->memory_bytes) / (1 << 20));
     print_operations(operations(*source, e), e.energy);
+    if (!e.unsimulated_tools.empty()) {
+      std::printf("  not simulated:");
+      for (int t : e.unsimulated_tools)
+        std::printf(" T%d", t);
+      std::printf(" (described nowhere: their moves remove nothing)\n");
+    }
   }
   std::cout.flush();
   print_diagnostics(e.diagnostics);

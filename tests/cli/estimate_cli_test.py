@@ -54,13 +54,30 @@ check(all(b["removed_mm3"] == 0 for b in rapids), "rapids remove nothing")
 check(all(b["components"]["cutting"] == 0 for b in blocks if b["removed_mm3"] == 0),
       "no cutting energy where nothing is removed")
 
-# A tool that is used but defined nowhere is an error naming the tool.
+# A tool that is used but described nowhere is a warning naming the tool and the ways to describe
+# it; its moves are timed but remove nothing, and the JSON lists it as not simulated.
 with tempfile.TemporaryDirectory() as tmp:
     bare = os.path.join(tmp, "bare.ngc")
     with open(bare, "w") as f:
         f.write("G21 G90\nT7 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X50\nM30\n")
-    r = run("estimate", bare, "--machine", ZHOU)
-    check(r.returncode == 2 and "7" in r.stderr, f"undefined tool T7: exit 2, named ({r.stderr[:160]!r})")
+    r = run("estimate", bare, "--machine", ZHOU, "--json")
+    doc = json.loads(r.stdout) if r.returncode == 0 else None
+    check(doc is not None and "T7" in r.stderr and "--tool" in r.stderr,
+          f"undefined tool T7: exit 0, a warning names it and --tool ({r.stderr[:160]!r})")
+    check(doc is not None and doc["unsimulated_tools"] == [7] and doc["time_s"] > 0
+          and doc["removed_mm3"] == 0, "T7's moves are timed, remove nothing, and are listed")
+    r = run("estimate", bare, "--machine", ZHOU, "--tool", "7:flat:6", "--json")
+    check(r.returncode == 0 and json.loads(r.stdout)["unsimulated_tools"] == []
+          and json.loads(r.stdout)["tools"][0]["diameter_mm"] == 6, "--tool 7:flat:6 describes it")
+    tbl = os.path.join(tmp, "tool.tbl")
+    with open(tbl, "w") as f:
+        f.write("T7 P7 Z25 D8 ;8mm ball end mill\n")
+    r = run("estimate", bare, "--machine", ZHOU, "--tool-table", tbl, "--stock",
+            "box:-10,-10,-5,60,10,0", "--json")
+    doc = json.loads(r.stdout) if r.returncode == 0 else None
+    check(doc is not None and doc["tools"][0]["shape"] == "ball end mill"
+          and doc["tools"][0]["diameter_mm"] == 8 and doc["removed_mm3"] > 0,
+          "--tool-table gives T7 its size and shape")
     r = run("estimate", bare, "--machine", ZHOU, "--no-removal", "--json")
     check(r.returncode == 0 and json.loads(r.stdout)["removed_mm3"] == 0,
           "--no-removal estimates without tools")

@@ -98,6 +98,20 @@ TEST_CASE("dialect detection") {
   CHECK_FALSE(find_dialect("okuma").has_value());
   CHECK(detect("; Sinumerik 840D\nG17 G90\nMCALL CYCLE81(10,0,2,-5)\n") == "siemens");
   CHECK(detect("%PART G71 *\nN10 G00 X+0 *\n") == "heidenhain");
+  // ncjoule's own annotations name a dialect: they do not count.
+  CHECK(detect("(NCJ MACHINE DIALECT=fanuc CK=ABCDEF)\nG21\nG0 X1 (NCJ T=1s CK=ABCDEF)\n") ==
+        "linuxcnc");
+  // Why: the first clue, with its line.
+  const DialectChoice c = choose_dialect(make_source("x.nc", "%\nO1001 (PART)\nG21\nM30\n"));
+  CHECK(c.origin == DialectOrigin::Detected);
+  CHECK(describe_dialect_choice(c) == "fanuc (detected: O-number program header at line 2)");
+  CHECK(choose_dialect(make_source("x.nc", "G21\nG0 X1\n")).origin == DialectOrigin::Default);
+  // A machine's own control takes over where nothing names a dialect, never over a clue.
+  InterpreterOptions haas;
+  haas.fallback_dialect = find_dialect("haas");
+  CHECK(interpret(make_source("x.nc", "G21\nG4 P1000\nM30\n"), haas).result.dialect.name == "haas");
+  CHECK(interpret(make_source("x.nc", "o<a> sub\no<a> endsub\nM2\n"), haas).result.dialect.name ==
+        "linuxcnc");
   CHECK(detect("(Post Processor: PathScripts.post.marlin_post.py)\nG21\n") == "reprap");
   CHECK(detect("(POST PROCESSOR: PATHSCRIPTS.POST.FANUC_POST)\nG21\n") == "fanuc");
 }

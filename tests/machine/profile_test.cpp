@@ -165,3 +165,45 @@ TEST_CASE("text that is not TOML and files that do not exist name the file") {
   CHECK(std::string(e.what()).find("line 1") != std::string::npos);
   CHECK_THROWS_AS(load_profile("no/such/profile.toml"), ProfileError);
 }
+
+TEST_CASE("shipped profiles detect the dialect and carry a default tool with its source") {
+  const MachineProfile generic = load_profile(sample_path("generic-3axis.toml"));
+  CHECK(generic.dialect == "auto");
+  REQUIRE(generic.default_tool.has_value());
+  CHECK(generic.default_tool->shape == ToolShape::FlatEndMill);
+  CHECK(generic.default_tool->diameter_mm == doctest::Approx(6));
+  const MachineProfile haas = load_profile(sample_path("haas-vf0-pavanaskar2014.toml"));
+  CHECK(haas.dialect == "auto");
+  CHECK(haas.fallback_dialect == "haas");
+  REQUIRE(haas.default_tool.has_value());
+  CHECK(haas.default_tool->diameter_mm == doctest::Approx(0.375 * 25.4));
+  bool sourced = false;
+  for (const std::string& s : haas.sources)
+    sourced |= s.rfind("default_tool: ", 0) == 0;
+  CHECK(sourced);
+}
+
+TEST_CASE("[default_tool]: types and sizes are checked like every other key") {
+  const std::string base = read(sample_path("generic-3axis.toml"));
+  auto with_tool = [&](const std::string& table) {
+    std::string text = base;
+    const std::size_t at = text.find("[default_tool]");
+    const std::size_t end = text.find("\n[", at + 1);
+    return text.substr(0, at) + table + text.substr(end);
+  };
+  const MachineProfile ball = parse_profile(
+      with_tool("[default_tool]\nsource = \"t\"\ntype = \"ball\"\ndiameter_mm = 4\n"), "b.toml");
+  REQUIRE(ball.default_tool.has_value());
+  CHECK(ball.default_tool->corner_radius_mm == doctest::Approx(2));
+  check_names_file_and_key(
+      refusal(with_tool("[default_tool]\nsource = \"t\"\ntype = \"square\"\ndiameter_mm = 4\n")),
+      "default_tool.type");
+  check_names_file_and_key(
+      refusal(with_tool("[default_tool]\nsource = \"t\"\ntype = \"flat\"\ndiameter_mm = -4\n")),
+      "default_tool.diameter_mm");
+  check_names_file_and_key(
+      refusal(with_tool("[default_tool]\nsource = \"t\"\ntype = "
+                        "\"bullnose\"\ndiameter_mm = 4\ncorner_radius_mm = 3\n")),
+      "default_tool.diameter_mm");
+  check_names_file_and_key(refusal(with_line("dialect", "dialect = \"okuma\"")), "dialect");
+}

@@ -150,28 +150,3 @@ TEST_CASE("Mastercam tool comments") {
     CHECK(in.at(4).diameter_mm == doctest::Approx(12.7));
   }
 }
-
-TEST_CASE("a tool used but defined nowhere is an error that names it") {
-  ProgramBuilder p;
-  p.tool(1).feed_rate(300).rapid(0, 0, 5).feed(0, 0, -1);
-  p.tool(7).rapid(10, 0, 5).feed(10, 0, -1).feed(20, 0, -1);
-  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
-  const auto diags = check_tools_defined(p.commands(), tools, "part.nc");
-  REQUIRE(diags.size() == 1);
-  CHECK(diags[0].severity == Severity::Error);
-  CHECK(diags[0].message.find("T7") != std::string::npos);
-  CHECK(diags[0].line == 3); // first move with T7, 1-based
-  CHECK(diags[0].file == "part.nc");
-
-  StockSpec stock;
-  stock.kind = StockSpec::Kind::Box;
-  stock.box = {-5, -5, -5, 30, 5, 0};
-  const RemovalResult r =
-      simulate_removal(p.commands(), constant_speed_timeline(p.commands(), 0.5), tools, stock);
-  bool named = false;
-  for (const Diagnostic& d : r.diagnostics)
-    named |= d.severity == Severity::Error && d.message.find("T7") != std::string::npos;
-  CHECK(named);
-  CHECK(r.commands[1].removed_mm3 > 0); // T1's plunge still counts
-  CHECK(r.commands[4].removed_mm3 == 0);
-}

@@ -18,14 +18,19 @@ namespace ncjoule {
 
 struct EstimateOptions {
   std::optional<Dialect> dialect; // empty: the machine's dialect, else detected from the file
+  bool detect_dialect = false;    // detect even when the machine names a dialect (--dialect auto)
   std::optional<StockSpec> stock; // empty: the bounding box of the cutting moves
   bool simulate_removal = true;   // false: no tools needed, cutting power is zero
   RemovalOptions removal;
   EnergyOptions energy;
-  ToolTable tool_table; // tool lengths for G43 (optional)
+  // A LinuxCNC tool table: lengths for G43, and a tool for every entry with a diameter.
+  ToolTable tool_table;
+  std::string tool_table_path; // for diagnostics
   // Tools from a job file or the command line; a tool here replaces the program's header
-  // comment for the same number.
+  // comment (and the tool table) for the same number.
   std::map<int, Tool> tools;
+  // The tool of moves that select and describe none; empty: the machine profile's.
+  std::optional<Tool> default_tool;
 };
 
 // A job file (TOML) says what a program is cut from and with:
@@ -71,7 +76,8 @@ struct Estimate {
   Dialect dialect;
   Toolpath toolpath;
   Timeline timeline;
-  std::map<int, Tool> tools;
+  std::map<int, Tool> tools;            // by the number moves carry; 0: moves with none selected
+  std::vector<int> unsimulated_tools;   // tools moves use that nothing describes (no removal)
   std::optional<RemovalResult> removal; // empty when removal was not simulated
   EnergyResult energy;
   std::vector<LineSummary> lines;      // one per source line that holds code, in file order
@@ -80,7 +86,9 @@ struct Estimate {
 };
 
 // Runs the pipeline. Never throws for bad input: problems are diagnostics, and `failed` is set
-// when the program cannot be estimated (e.g. a tool used but defined nowhere).
+// only when no estimate could be made (the removal stage failed outright). What cannot be
+// modelled (a tool nothing describes, an unknown code) is a warning and a labelled
+// approximation.
 Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
                           const EstimateOptions& options = {});
 

@@ -241,6 +241,7 @@ struct ToolEntry {
   int number = 0;
   double z_offset = 0; // mm, tool length
   double diameter = 0; // mm
+  std::string comment; // the text after ';' (often the tool's name: "6mm ball end mill")
 };
 using ToolTable = std::map<int, ToolEntry>;
 // Reads a LinuxCNC .tbl file ("T1 P1 Z1.5 D0.25 ;comment"); values in the given units.
@@ -253,6 +254,8 @@ ToolTable parse_tool_table(const SourceFile& file, bool inch, std::vector<Diagno
 
 struct InterpreterOptions {
   std::optional<Dialect> dialect; // empty: detect from the text
+  // Detection found nothing: this dialect (the machine's control) rather than linuxcnc.
+  std::optional<Dialect> fallback_dialect;
   ToolTable tools;
   bool block_delete = false;                   // honour '/' (skip those blocks)
   bool optional_stop = true;                   // M1 stops (only recorded; time counts zero)

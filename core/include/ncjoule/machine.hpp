@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ncjoule/gcode.hpp"
+#include "ncjoule/tool.hpp"
 
 namespace ncjoule {
 
@@ -79,7 +80,11 @@ struct PowerConstants {
 struct MachineProfile {
   std::string name;
   std::string source_path; // file it came from
-  std::string dialect;     // controller dialect name (see gcode.hpp)
+  std::string dialect;     // controller dialect name (see gcode.hpp), or "auto": detected
+  // With dialect "auto": the machine's own control, used when nothing in a program names one.
+  std::string fallback_dialect;
+  // The tool moves cut with where the program selects none and describes none ([default_tool]).
+  std::optional<Tool> default_tool;
   Kinematics kinematics;
   PowerConstants power;
   std::vector<std::string> sources; // where the constants come from, as written in the file

@@ -22,51 +22,13 @@
 
 #include "ncjoule/gcode.hpp"
 #include "ncjoule/kinematics.hpp"
+#include "ncjoule/tool.hpp"
 
 namespace ncjoule {
 
 // ---------------------------------------------------------------------------------------------
 // Tools
 // ---------------------------------------------------------------------------------------------
-
-enum class ToolShape : std::uint8_t {
-  FlatEndMill,
-  BallEndMill,
-  BullNose, // flat bottom with a corner radius
-  Drill,    // conical point of tip_angle_deg (included angle)
-  Chamfer,  // V-bit / chamfer mill: cone of tip_angle_deg, optionally with a flat tip
-};
-
-// A rotating 3-axis tool, described by its profile. The tool is a solid of revolution around a
-// vertical axis through its tip; only its lower envelope matters for removal from above.
-struct Tool {
-  int number = 0;
-  ToolShape shape = ToolShape::FlatEndMill;
-  double diameter_mm = 0;       // cutting diameter
-  double corner_radius_mm = 0;  // bull nose (a ball end mill has diameter/2)
-  double tip_angle_deg = 118;   // drill and chamfer: included angle of the cone
-  double tip_diameter_mm = 0;   // chamfer: diameter of the flat at the tip (0 = pointed)
-  double cutting_length_mm = 0; // flute length above the tip; 0 = unknown
-  double shank_diameter_mm = 0; // 0 = same as diameter_mm
-  std::string description;      // as the source wrote it
-
-  double radius() const { return diameter_mm / 2; }
-  // The widest radius whose lower surface can touch the stock: the cutting radius, or the
-  // shank's when the shank is wider than the cutter (and the cutting length is known).
-  double reach_radius() const;
-  // Height of the tool's lower surface above its tip at radial distance r from its axis
-  // (0 at the tip); +infinity beyond reach_radius().
-  double envelope_height(double r) const;
-  // The inverse: radius of the tool's cross-section at height t above the tip (cutter part
-  // only, capped at radius()); negative below the tip.
-  double section_radius(double t) const;
-};
-
-std::string_view tool_shape_name(ToolShape shape); // "flat end mill", ...
-
-// Checks a tool for sizes removal cannot use (no diameter, corner radius larger than the
-// radius, tip angle outside (0, 180)); empty when it is usable.
-std::string tool_problem(const Tool& tool);
 
 // Reads the tool descriptions CAM posts write into header comments:
 //  - Fusion 360 / HSM: "(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)", with "TAPER=118deg" for
@@ -80,21 +42,30 @@ std::string tool_problem(const Tool& tool);
 std::map<int, Tool> parse_tool_comments(const SourceFile& source,
                                         std::vector<Diagnostic>& diagnostics);
 
-// The tool types of tool tables and of --tool: "flat", "ball", "bullnose", "drill",
-// "chamfer" (any case); std::nullopt for anything else.
-std::optional<ToolShape> tool_shape_from_name(std::string_view name);
+// Which tool each move cuts with: the tools `described` (tool table, CAM comments, job file,
+// command line), by the number the moves carry (CanonCommand::state.tool; 0 when the program has
+// selected none). Rules, each with a diagnostic where it guesses:
+//  - a described number is that tool;
+//  - tool 0 (moves before any tool change, or a program that never selects one: grbl-style
+//    posts, Estlcam, pcb2gcode) is the tool described as T0, else the one tool described, else
+//    the program's only tool, else `default_tool` (the machine profile's [default_tool]);
+//  - a number nothing describes is in `unsimulated`: its moves are timed but remove nothing, and
+//    a warning names the tool and the ways to describe it.
+// Rapids need no tool: tool 0 used only by rapids gives no diagnostic.
+struct ToolAssignment {
+  std::map<int, Tool> tools;    // by number, 0 included when a fallback was found
+  std::vector<int> unsimulated; // numbers moves use that no tool stands for
+  std::vector<Diagnostic> diagnostics;
+};
+ToolAssignment assign_tools(const std::vector<CanonCommand>& commands,
+                            const std::map<int, Tool>& described,
+                            const std::optional<Tool>& default_tool, std::string_view file = {});
 
-// A tool written as "N:TYPE:DIAMETER[:EXTRA[:EXTRA]]" (mm and degrees), as on the command line:
-//   1:flat:6   2:ball:6   3:bullnose:10:1.5 (corner radius)   4:drill:6.8:118 (point angle,
-//   118 when left out)   5:chamfer:12:90:0.5 (included angle, 90 when left out; tip flat).
-// Returns std::nullopt with *error set when the text is not understood or the tool is unusable.
-std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error = nullptr);
-
-// One error per tool number that a move uses (state.tool) but `tools` does not define, naming
-// the tool and the first source line that uses it. `file` is used in the diagnostics.
-std::vector<Diagnostic> check_tools_defined(const std::vector<CanonCommand>& commands,
-                                            const std::map<int, Tool>& tools,
-                                            std::string_view file = {});
+// Tools from a LinuxCNC tool table: every entry with a diameter becomes a tool of that size, its
+// shape read from the entry's comment ("6mm ball end mill"), else a flat end mill (a note says
+// so). Lengths stay with the interpreter (G43).
+std::map<int, Tool> tools_from_table(const ToolTable& table, std::vector<Diagnostic>& diagnostics,
+                                     std::string_view file = {});
 
 // ---------------------------------------------------------------------------------------------
 // Stock
@@ -273,8 +244,8 @@ struct RemovalResult {
 
 // Plays the timeline on the stock. Moves (Traverse, Feed, Arc, Probe) remove material step by
 // step between consecutive samples; a Traverse that removes material is flagged as a collision
-// with a warning. Moves whose tool is not in `tools` remove nothing, and each such tool gets one
-// error naming it. A stock that cannot be read is an error and nothing is removed.
+// with a warning. Moves whose tool is not in `tools` remove nothing (assign_tools says which and
+// why). A stock that cannot be read is an error and nothing is removed.
 RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const Timeline& timeline,
                                const std::map<int, Tool>& tools, const StockSpec& stock,
                                const RemovalOptions& options = {});

@@ -249,14 +249,38 @@ function ncjouleResolveProfile(profile) {
 
 var ncjouleExitReasons = {
   1: "bad command line (check the extra arguments)",
-  2: "bad input: the program, the machine profile or the stock could not be read or has errors",
+  2: "bad input: the program, the machine profile or the stock could not be read",
   3: "the annotated file could not be written",
   4: "internal error"
 };
 
+// True when the file carries ncjoule's header (it was written). Never throws.
+function ncjouleIsAnnotated(file) {
+  try {
+    if (typeof TextFile == "undefined") {
+      return false;
+    }
+    var f = new TextFile(file, false, "ansi");
+    var found = false;
+    for (var i = 0; i < 40 && !found; ++i) {
+      var line;
+      try {
+        line = f.readln();
+      } catch (e) {
+        break;
+      }
+      found = /[(;]NCJ TOTAL /i.test(line);
+    }
+    f.close();
+    return found;
+  } catch (e) {
+    return false;
+  }
+}
+
 // Annotates one file in place; true when it was annotated. Never throws.
 function ncjouleAnnotateFile(program, profile, file) {
-  var args = "annotate " + ncjouleQuote(file) + " --machine " + ncjouleQuote(profile) + " --in-place";
+  var args = "annotate --machine " + ncjouleQuote(profile) + " --in-place";
   var stock = String(ncjouleProperty("ncjouleStock") || "");
   if (stock) {
     args += " --stock " + ncjouleQuote(stock);
@@ -265,6 +289,8 @@ function ncjouleAnnotateFile(program, profile, file) {
   if (extra) {
     args += " " + extra;
   }
+  // "--" before the file: a file named like an option stays a file.
+  args += " -- " + ncjouleQuote(file);
   var code;
   try {
     var folder = "";
@@ -275,6 +301,11 @@ function ncjouleAnnotateFile(program, profile, file) {
   } catch (e) {
     ncjouleWarning("could not run '" + program + "' (" + e + "); " + file + " is as the post wrote it");
     return false;
+  }
+  if (code === 2 && ncjouleIsAnnotated(file)) {
+    // Errors the controller would refuse: annotated all the same, the header lists them.
+    ncjouleWarning(file + " was annotated; it has errors its controller would refuse (see its NCJ WARN lines)");
+    return true;
   }
   if (code !== 0 && code !== undefined && code !== null) {
     ncjouleWarning("'" + program + " " + args + "' exited with " + code +

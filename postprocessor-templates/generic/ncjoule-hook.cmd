@@ -52,8 +52,16 @@ if "%NCJOULE_MACHINE%"=="" (
 )
 set "stockarg="
 if not "%NCJOULE_STOCK%"=="" set stockarg=--stock "%NCJOULE_STOCK%"
-"%NCJOULE%" annotate "%file%" --machine "%NCJOULE_MACHINE%" --in-place !stockarg! %NCJOULE_ARGS% 1>nul 2>"%TEMP%\ncjoule-hook.err"
+"%NCJOULE%" annotate --machine "%NCJOULE_MACHINE%" --in-place !stockarg! %NCJOULE_ARGS% -- "%file%" 1>nul 2>"%TEMP%\ncjoule-hook.err"
 set "rc=!errorlevel!"
+if "!rc!"=="2" (
+  findstr /r /c:"NCJ TOTAL" "%file%" >nul 2>nul && (
+    echo ncjoule-hook: warning: %file% annotated, with errors its controller would refuse: 1>&2
+    type "%TEMP%\ncjoule-hook.err" 1>&2
+    del "%TEMP%\ncjoule-hook.err" 2>nul
+    exit /b 0
+  )
+)
 if not "!rc!"=="0" (
   echo ncjoule-hook: warning: %file% not annotated ^(ncjoule exit !rc!^); the file is as it was: 1>&2
   type "%TEMP%\ncjoule-hook.err" 1>&2

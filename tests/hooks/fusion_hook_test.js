@@ -261,7 +261,7 @@ test("a post writing two programs (main + subprogram via redirectToFile) gets bo
   assert.strictEqual(strip(out), mainOriginal);
   assert.strictEqual(strip(sub), fs.readFileSync(PROGRAM_B, "latin1"));
   // the setup sheet (.txt) is not a program and is not handed to ncjoule
-  const annotatedFiles = engine.record.executed.map((e) => splitArguments(e[1])[1]);
+  const annotatedFiles = engine.record.executed.map((e) => splitArguments(e[1]).slice(-1)[0]);
   assert.deepStrictEqual(annotatedFiles, [out, sub], "annotated: " + annotatedFiles.join(", "));
 });
 

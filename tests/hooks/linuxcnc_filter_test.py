@@ -1,7 +1,8 @@
 """The LinuxCNC [FILTER] program (postprocessor-templates/linuxcnc/ncjoule-filter) by the filter
 contract: LinuxCNC runs it as `sh -c "PROGRAM 'FILE'"` with stdin closed, takes the G-code from
 stdout, reads FILTER_PROGRESS=N lines on stderr, and treats a non-zero exit as a failure (stderr
-is the message). The original file is never modified.
+is the message). Every readable program is shown (exit 0): annotated where ncjoule can estimate
+it, else as it is with the reason on stderr. The original file is never modified.
 
 Usage: NCJOULE=path/to/ncjoule NCJOULE_SOURCE_DIR=repo python3 linuxcnc_filter_test.py
 """
@@ -101,35 +102,63 @@ def main():
     check(r.returncode == 0, "INI: exit %d: %s" % (r.returncode, r.stderr.decode()))
     check(annotated(r.stdout), "INI: stdout not annotated")
 
-    case("an error in the program: non-zero exit, the reason on stderr, nothing on stdout")
+    case("an error in the program: annotated all the same, the reason on stderr, exit 0")
     bad = os.path.join(folder, "bad.ngc")
     with open(bad, "wb") as f:
         f.write(b"(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)\nT1 M6\nG1 X10 F\nM30\n")
     with open(bad, "rb") as f:
         bad_original = f.read()
     r = run_filter(base, bad)
-    check(r.returncode != 0, "bad program: exit 0")
-    check(r.stdout == b"", "bad program: something on stdout: %r" % r.stdout[:200])
-    check("ncjoule could not annotate" in r.stderr.decode(), "bad program: stderr %r" % r.stderr.decode())
+    check(r.returncode == 0, "bad program: exit %d" % r.returncode)
+    check(annotated(r.stdout) and strip(r.stdout, folder) == bad_original,
+          "bad program: not annotated: %r" % r.stdout[:200])
+    check("error" in r.stderr.decode(), "bad program: stderr %r" % r.stderr.decode())
     with open(bad, "rb") as f:
         check(f.read() == bad_original, "bad program: the file was modified")
 
-    case("passthrough: the same failure shows the program unannotated, exit 0")
-    r = run_filter(base + " --passthrough", bad)
-    check(r.returncode == 0, "passthrough: exit %d" % r.returncode)
-    check(r.stdout == bad_original, "passthrough: stdout is not the program")
-    check("showing the program without annotations" in r.stderr.decode(), "passthrough: no reason given")
+    case("a tool no comment describes: annotated, the tool named on stderr")
+    notool = os.path.join(folder, "notool.ngc")
+    with open(notool, "wb") as f:
+        f.write(b"G21 G90\nT7 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X50\nM30\n")
+    r = run_filter(base, notool)
+    check(r.returncode == 0 and annotated(r.stdout), "no tool: exit %d" % r.returncode)
+    check("T7" in r.stderr.decode(), "no tool: T7 not named: %r" % r.stderr.decode())
 
-    case("missing ncjoule: non-zero exit and why")
+    case("the INI's [EMCIO] TOOL_TABLE describes the tools (in [TRAJ] LINEAR_UNITS)")
+    with open(os.path.join(ini_dir, "tool.tbl"), "w") as f:
+        f.write("T7 P7 Z1 D0.25 ;1/4 ball end mill\n")
+    with open(ini, "a") as f:
+        f.write("\n[EMCIO]\nTOOL_TABLE = tool.tbl\n\n[TRAJ]\nLINEAR_UNITS = inch\n")
+    r = run_filter(q(FILTER), notool, {"INI_FILE_NAME": ini})
+    check(r.returncode == 0 and annotated(r.stdout), "tool table: exit %d" % r.returncode)
+    check("T7" not in r.stderr.decode(), "tool table: T7 still undescribed: %r" % r.stderr.decode())
+
+    case("ncjoule cannot run: the program unannotated, the reason on stderr, exit 0")
+    r = run_filter("%s --ncjoule %s --machine %s" % (q(FILTER), q(NCJOULE), q(os.path.join(folder, "no.toml"))),
+                   program_file)
+    check(r.returncode == 0 and r.stdout == original, "bad profile: not shown as it is")
+    check("showing the program without annotations" in r.stderr.decode(), "bad profile: no reason given")
+
+    case("missing ncjoule: the program as it is, and why")
     r = run_filter("%s --ncjoule %s --machine %s" % (q(FILTER), q(os.path.join(folder, "none")), q(MACHINE)),
                    program_file)
-    check(r.returncode != 0 and "not found" in r.stderr.decode(), "missing ncjoule: %d %r" % (
+    check(r.returncode == 0 and "not found" in r.stderr.decode(), "missing ncjoule: %d %r" % (
         r.returncode, r.stderr.decode()))
-    check(r.stdout == b"", "missing ncjoule: something on stdout")
+    check(r.stdout == original, "missing ncjoule: the program is not shown")
 
-    case("no machine profile: non-zero exit and why")
+    case("no machine profile: the program as it is, and why")
     r = run_filter("%s --ncjoule %s" % (q(FILTER), q(NCJOULE)), program_file)
-    check(r.returncode != 0 and "no machine profile" in r.stderr.decode(), "no profile: %r" % r.stderr.decode())
+    check(r.returncode == 0 and "no machine profile" in r.stderr.decode(), "no profile: %r" % r.stderr.decode())
+
+    case("file names that look like options are files")
+    for name in ("-h", "-", "-o.ngc", "--help"):
+        odd = os.path.join(folder, name)
+        shutil.copyfile(SAMPLE, odd)
+        r = subprocess.run(["sh", "-c", "cd %s && %s %s" % (q(folder), base, q(name))],
+                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        check(r.returncode == 0 and annotated(r.stdout) and strip(r.stdout, folder) == original,
+              "file %r: exit %d %r" % (name, r.returncode, r.stderr.decode()[:200]))
+        os.remove(odd)
 
     case("unreadable file: non-zero exit")
     r = run_filter(base, os.path.join(folder, "does-not-exist.ngc"))

@@ -15,22 +15,33 @@ struct PlaneCoords {
 
 PlaneCoords to_plane(const Pose& p, Plane plane) {
   switch (plane) {
-  case Plane::XY: return {p.x, p.y, p.z};
-  case Plane::YZ: return {p.y, p.z, p.x};
-  case Plane::XZ: return {p.z, p.x, p.y};
+  case Plane::XY:
+    return {p.x, p.y, p.z};
+  case Plane::YZ:
+    return {p.y, p.z, p.x};
+  case Plane::XZ:
+    return {p.z, p.x, p.y};
   }
   return {p.x, p.y, p.z};
 }
 
 void from_plane(Pose& p, Plane plane, const PlaneCoords& c) {
   switch (plane) {
-  case Plane::XY: p.x = c.first, p.y = c.second, p.z = c.normal; break;
-  case Plane::YZ: p.y = c.first, p.z = c.second, p.x = c.normal; break;
-  case Plane::XZ: p.z = c.first, p.x = c.second, p.y = c.normal; break;
+  case Plane::XY:
+    p.x = c.first, p.y = c.second, p.z = c.normal;
+    break;
+  case Plane::YZ:
+    p.y = c.first, p.z = c.second, p.x = c.normal;
+    break;
+  case Plane::XZ:
+    p.z = c.first, p.x = c.second, p.y = c.normal;
+    break;
   }
 }
 
-double lerp(double a, double b, double u) { return a + (b - a) * u; }
+double lerp(double a, double b, double u) {
+  return a + (b - a) * u;
+}
 
 } // namespace
 
@@ -47,11 +58,13 @@ ArcGeometry arc_geometry(const CanonCommand& arc) {
   double sweep;
   if (arc.rotation >= 0) { // counter-clockwise: a positive sweep
     sweep = a1 - a0;
-    while (sweep <= 1e-12) sweep += two_pi;
+    while (sweep <= 1e-12)
+      sweep += two_pi;
     sweep += two_pi * (turns > 0 ? turns - 1 : 0);
   } else {
     sweep = a1 - a0;
-    while (sweep >= -1e-12) sweep -= two_pi;
+    while (sweep >= -1e-12)
+      sweep -= two_pi;
     sweep -= two_pi * (turns - 1);
   }
   // An end point equal to the start is a full circle (the loops above already give 2*pi).

@@ -49,7 +49,8 @@ private:
 
   bool number(double& v) {
     std::size_t i = pos_;
-    while (i < t_.size() && (std::isdigit(static_cast<unsigned char>(t_[i])) || t_[i] == '.')) ++i;
+    while (i < t_.size() && (std::isdigit(static_cast<unsigned char>(t_[i])) || t_[i] == '.'))
+      ++i;
     if (i == pos_) return fail("expected a number");
     if (!parse_plain_number(t_.substr(pos_, i - pos_), v)) return fail("malformed number");
     pos_ = i;
@@ -97,9 +98,9 @@ private:
   }
 
   bool function(double& v) {
-    static constexpr const char* names[] = {"abs", "acos", "asin",  "atan", "cos", "exp", "fix",
-                                            "fup", "ln",   "round", "sin",  "sqrt", "tan",
-                                            "exists"};
+    static constexpr const char* names[] = {"abs", "acos", "asin", "atan",  "cos",
+                                            "exp", "fix",  "fup",  "ln",    "round",
+                                            "sin", "sqrt", "tan",  "exists"};
     for (const char* f : names) {
       const std::size_t len = std::strlen(f);
       if (t_.compare(pos_, len, f) != 0 || pos_ + len >= t_.size() || t_[pos_ + len] != '[')
@@ -127,26 +128,34 @@ private:
         v = std::atan2(a, b) / kDegree;
         return true;
       }
-      if (name == "abs") v = std::abs(a);
+      if (name == "abs")
+        v = std::abs(a);
       else if (name == "acos") {
         if (a < -1 || a > 1) return pos_ = start, fail("ACOS argument out of range [-1, 1]");
         v = std::acos(a) / kDegree;
       } else if (name == "asin") {
         if (a < -1 || a > 1) return pos_ = start, fail("ASIN argument out of range [-1, 1]");
         v = std::asin(a) / kDegree;
-      } else if (name == "cos") v = std::cos(a * kDegree);
-      else if (name == "exp") v = std::exp(a);
-      else if (name == "fix") v = std::floor(a);
-      else if (name == "fup") v = std::ceil(a);
+      } else if (name == "cos")
+        v = std::cos(a * kDegree);
+      else if (name == "exp")
+        v = std::exp(a);
+      else if (name == "fix")
+        v = std::floor(a);
+      else if (name == "fup")
+        v = std::ceil(a);
       else if (name == "ln") {
         if (a <= 0) return pos_ = start, fail("LN of zero or a negative number");
         v = std::log(a);
-      } else if (name == "round") v = std::round(a); // halves away from zero, as LinuxCNC
-      else if (name == "sin") v = std::sin(a * kDegree);
+      } else if (name == "round")
+        v = std::round(a); // halves away from zero, as LinuxCNC
+      else if (name == "sin")
+        v = std::sin(a * kDegree);
       else if (name == "sqrt") {
         if (a < 0) return pos_ = start, fail("SQRT of a negative number");
         v = std::sqrt(a);
-      } else if (name == "tan") v = std::tan(a * kDegree);
+      } else if (name == "tan")
+        v = std::tan(a * kDegree);
       return true;
     }
     return fail("unknown function or word in expression");
@@ -234,12 +243,24 @@ private:
       double r;
       if (!additive(r)) return false;
       switch (op) {
-      case 0: v = std::abs(v - r) < kEqualTolerance; break;
-      case 1: v = std::abs(v - r) >= kEqualTolerance; break;
-      case 2: v = v > r; break;
-      case 3: v = v >= r; break;
-      case 4: v = v < r; break;
-      case 5: v = v <= r; break;
+      case 0:
+        v = std::abs(v - r) < kEqualTolerance;
+        break;
+      case 1:
+        v = std::abs(v - r) >= kEqualTolerance;
+        break;
+      case 2:
+        v = v > r;
+        break;
+      case 3:
+        v = v >= r;
+        break;
+      case 4:
+        v = v < r;
+        break;
+      case 5:
+        v = v <= r;
+        break;
       }
     }
   }

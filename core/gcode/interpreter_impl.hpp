@@ -1,5 +1,7 @@
-// Internal: the interpreter's state machine. interpreter.cpp runs blocks and control flow,
-// motion.cpp makes moves, canned_cycles.cpp expands drilling cycles.
+// Internal: the interpreter's state machine. interpreter.cpp runs the main loop,
+// control_flow.cpp the O-words and subprogram calls, block_words.cpp reads a block's words,
+// convert*.cpp execute a block step by step in rs274ngc's order, motion.cpp makes moves,
+// canned_cycles.cpp expands drilling cycles.
 #pragma once
 
 #include <array>
@@ -71,7 +73,7 @@ private:
   void scan_labels();
   void emit_preamble();
 
-  // --- control flow (interpreter.cpp) -------------------------------------------------------
+  // --- control flow (control_flow.cpp) -----------------------------------------------------
   struct Frame {
     std::size_t return_pc = 0;
     std::size_t start_pc = 0;                    // first line of the body (for Fanuc repeats)
@@ -81,19 +83,47 @@ private:
     int call_line = 0;                           // line of the outermost call
   };
   void handle_o_word(const Block& b);
+  void o_sub(const Block& b);
+  void o_return(const Block& b);
+  void o_call(const Block& b);
+  void o_if(const Block& b);    // if, elseif, else, endif
+  void o_while(const Block& b); // do, while, endwhile
+  void o_repeat(const Block& b);
+  void o_break_or_continue(const Block& b);
   std::optional<std::size_t> find_next(const std::string& label, std::size_t after,
                                        std::initializer_list<const char*> keywords) const;
   std::optional<std::size_t> find_prev(const std::string& label, std::size_t before,
                                        std::initializer_list<const char*> keywords) const;
   bool eval_condition(std::string_view args, int column, double& value);
   void call_subroutine(std::size_t target_line, std::vector<double> args, bool fanuc, int repeats);
-  void macro_call(const BlockValues& v); // G65
+  void macro_call(const BlockValues& v);                           // G65
+  void fanuc_call(const BlockValues& v, int m);                    // M98, M97
+  void fanuc_return(const BlockValues& v);                         // M99
+  std::optional<std::size_t> local_subprogram_line(long n_number); // Haas M97 target
   void return_from_subroutine(std::optional<double> value);
 
-  // --- one block ----------------------------------------------------------------------------
+  // --- one block: its words (block_words.cpp) and its execution (convert*.cpp) ----------------
   bool evaluate_words(const Block& b, BlockValues& v);
-  void execute(const Block& b, BlockValues& v);
   bool check_modal_groups(BlockValues& v);
+  void execute(const Block& b, BlockValues& v);
+  void convert_comments(const Block& b);
+  void convert_other_codes(const BlockValues& v);
+  void convert_feed(const BlockValues& v);
+  void convert_spindle_speed(const BlockValues& v);
+  void convert_tool(const BlockValues& v);
+  void convert_spindle_and_coolant(const BlockValues& v);
+  void check_m_codes(const BlockValues& v);
+  void convert_dwell(const Block& b, const BlockValues& v);
+  void convert_plane_and_units(const BlockValues& v);
+  void convert_cutter_compensation(const BlockValues& v);
+  void convert_tool_length_offset(BlockValues& v);
+  void convert_coordinate_system(const BlockValues& v);
+  void convert_path_control(const BlockValues& v);
+  void convert_distance_modes(const BlockValues& v);
+  bool convert_group0(const BlockValues& v);
+  void set_motion_mode(const BlockValues& v);
+  void convert_motion(BlockValues& v, bool axes_used);
+  void convert_stops_and_calls(const BlockValues& v);
 
   // --- motion (motion.cpp) -------------------------------------------------------------------
   Pose target_from_words(const BlockValues& v, bool machine_coordinates);

@@ -11,7 +11,9 @@ std::string key(std::string_view name) {
     if (c != ' ' && c != '\t') k.push_back(char(std::tolower(static_cast<unsigned char>(c))));
   return k;
 }
-bool is_global(std::string_view name) { return !name.empty() && name[0] == '_'; }
+bool is_global(std::string_view name) {
+  return !name.empty() && name[0] == '_';
+}
 } // namespace
 
 Parameters::Parameters() : numbered_(param::kCount + 1, 0.0) {
@@ -64,19 +66,23 @@ bool Parameters::write(int index, double value, std::string& error) {
 
 void Parameters::write(std::string_view raw, double value) {
   const std::string name = key(raw);
-  if (!is_global(name) && !scopes_.empty()) scopes_.back().named[name] = value;
-  else globals_[name] = value;
+  if (!is_global(name) && !scopes_.empty())
+    scopes_.back().named[name] = value;
+  else
+    globals_[name] = value;
 }
 
 void Parameters::push_scope() {
   Scope s;
-  for (int i = 1; i <= 30; ++i) s.saved_locals[i] = numbered_[i];
+  for (int i = 1; i <= 30; ++i)
+    s.saved_locals[i] = numbered_[i];
   scopes_.push_back(std::move(s));
 }
 
 void Parameters::pop_scope() {
   if (scopes_.empty()) return;
-  for (int i = 1; i <= 30; ++i) numbered_[i] = scopes_.back().saved_locals[i];
+  for (int i = 1; i <= 30; ++i)
+    numbered_[i] = scopes_.back().saved_locals[i];
   scopes_.pop_back();
 }
 

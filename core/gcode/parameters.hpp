@@ -15,14 +15,14 @@ namespace ncjoule::detail {
 // LinuxCNC's numbered parameters that hold machine state.
 namespace param {
 constexpr int kCount = 5602;
-constexpr int kG28 = 5161;       // 5161-5169: G28 home (machine coordinates)
-constexpr int kG30 = 5181;       // 5181-5189: G30 home
+constexpr int kG28 = 5161; // 5161-5169: G28 home (machine coordinates)
+constexpr int kG30 = 5181; // 5181-5189: G30 home
 constexpr int kG92Enabled = 5210;
-constexpr int kG92 = 5211;       // 5211-5219: G92 offsets
+constexpr int kG92 = 5211; // 5211-5219: G92 offsets
 constexpr int kCoordSystem = 5220;
-constexpr int kG54 = 5221;       // 5221-5229 G54, +20 for each next system up to G59.3
+constexpr int kG54 = 5221; // 5221-5229 G54, +20 for each next system up to G59.3
 constexpr int kToolNumber = 5400;
-constexpr int kPosition = 5420;  // 5420-5428: current position (program coordinates)
+constexpr int kPosition = 5420; // 5420-5428: current position (program coordinates)
 } // namespace param
 
 class Parameters final : public ParameterReader {

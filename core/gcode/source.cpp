@@ -12,7 +12,8 @@ SourceFile make_source(std::string path, std::string text) {
   const std::size_t n = t.size();
   while (begin < n) {
     std::size_t i = begin;
-    while (i < n && t[i] != '\n' && t[i] != '\r') ++i;
+    while (i < n && t[i] != '\n' && t[i] != '\r')
+      ++i;
     LineSpan span{begin, i - begin, 0};
     if (i < n) {
       span.eol_length = (t[i] == '\r' && i + 1 < n && t[i + 1] == '\n') ? 2 : 1;
@@ -28,9 +29,15 @@ std::string format_diagnostic(const Diagnostic& d) {
   out += ':' + std::to_string(d.line);
   if (d.column > 0) out += ':' + std::to_string(d.column);
   switch (d.severity) {
-  case Severity::Note: out += ": note: "; break;
-  case Severity::Warning: out += ": warning: "; break;
-  case Severity::Error: out += ": error: "; break;
+  case Severity::Note:
+    out += ": note: ";
+    break;
+  case Severity::Warning:
+    out += ": warning: ";
+    break;
+  case Severity::Error:
+    out += ": error: ";
+    break;
   }
   out += d.message;
   return out;

@@ -22,57 +22,110 @@ double instantaneous_power(const CanonCommand& cmd, const PowerConstants& consta
 
 } // namespace
 
-EnergyResult integrate_energy(const std::vector<OperatingSegment>& trace, const Timeline& timeline,
-                              const RemovalResult* removal, const PowerConstants& constants,
-                              const EnergyOptions& options) {
-  EnergyResult result;
-  result.model_description = describe_power_constants(constants);
-  result.commands.resize(timeline.commands.size());
-  for (std::size_t i = 0; i < timeline.commands.size(); ++i) {
-    const TimedCommand& tc = timeline.commands[i];
-    CommandEnergy& ce = result.commands[i];
-    ce.command = i;
-    ce.line = tc.line;
-    ce.duration_s = tc.duration_s;
-    if (removal && i < removal->commands.size()) ce.removed_mm3 = removal->commands[i].removed_mm3;
-  }
-  std::vector<bool> has_power(timeline.commands.size(), false);
-  for (const OperatingSegment& seg : trace) {
-    if (seg.command >= result.commands.size()) continue;
-    CommandEnergy& ce = result.commands[seg.command];
+EnergyIntegrator::EnergyIntegrator(const PowerConstants& constants, const EnergyOptions& options)
+    : constants_(constants), options_(options) {}
+
+void EnergyIntegrator::set_rpm_before(double rpm) {
+  previous_rpm_ = rpm;
+}
+
+CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand& command,
+                                          const TimedCommand& timed,
+                                          const std::vector<OperatingSegment>& segments,
+                                          double removed_mm3) {
+  CommandEnergy ce;
+  ce.command = index;
+  ce.line = timed.line;
+  ce.duration_s = timed.duration_s;
+  ce.removed_mm3 = removed_mm3;
+  bool has_power = false;
+  for (const OperatingSegment& seg : segments) {
     const double dt = seg.t1_s - seg.t0_s;
-    const ComponentValues a = component_power_w(constants, seg.start);
-    const ComponentValues b = component_power_w(constants, seg.end);
+    const ComponentValues a = component_power_w(constants_, seg.start);
+    const ComponentValues b = component_power_w(constants_, seg.end);
     for (std::size_t c = 0; c < kPowerComponentCount; ++c)
       ce.components_j[c] += 0.5 * (a[c] + b[c]) * dt;
     const double peak = std::max(component_sum(a), component_sum(b));
-    ce.peak_power_w = has_power[seg.command] ? std::max(ce.peak_power_w, peak) : peak;
-    has_power[seg.command] = true;
+    ce.peak_power_w = has_power ? std::max(ce.peak_power_w, peak) : peak;
+    has_power = true;
   }
-  for (std::size_t i = 0; i < result.commands.size(); ++i) {
-    CommandEnergy& ce = result.commands[i];
-    ce.energy_j = component_sum(ce.components_j);
-    if (ce.duration_s > 0) {
-      ce.mean_power_w = ce.energy_j / ce.duration_s;
-    }
-    if (ce.removed_mm3 > 0) ce.sec_j_mm3 = ce.energy_j / ce.removed_mm3;
-    for (std::size_t c = 0; c < kPowerComponentCount; ++c)
-      result.components_j[c] += ce.components_j[c];
-    result.peak_power_w = std::max(result.peak_power_w, ce.peak_power_w);
-    result.duration_s += ce.duration_s;
+  ce.energy_j = component_sum(ce.components_j);
+  // The program's peak is over what runs for some time.
+  totals_.peak_power_w = std::max(totals_.peak_power_w, ce.peak_power_w);
+  if (ce.duration_s > 0) {
+    ce.mean_power_w = ce.energy_j / ce.duration_s;
+  } else {
+    // A command without duration reports the power of its state.
+    ce.mean_power_w = instantaneous_power(command, constants_);
+    ce.peak_power_w = std::max(ce.peak_power_w, ce.mean_power_w);
   }
+  if (ce.removed_mm3 > 0) ce.sec_j_mm3 = ce.energy_j / ce.removed_mm3;
+  for (std::size_t c = 0; c < kPowerComponentCount; ++c)
+    totals_.components_j[c] += ce.components_j[c];
+  totals_.duration_s += ce.duration_s;
+  totals_.removed_mm3 += ce.removed_mm3;
+  return ce;
+}
+
+CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& command,
+                                    const TimedCommand& timed, const CommandRemoval* removal,
+                                    std::vector<OperatingSegment>& segments,
+                                    std::vector<Diagnostic>* diagnostics) {
+  const std::size_t first = segments.size();
+  append_operating_segments(index, command, timed, removal, previous_rpm_, segments, diagnostics);
+  const std::vector<OperatingSegment> mine(segments.begin() + std::ptrdiff_t(first),
+                                           segments.end());
+  return integrate(index, command, timed, mine, removal ? removal->removed_mm3 : 0.0);
+}
+
+EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
+  EnergyResult result = totals_;
+  result.model_description = describe_power_constants(constants_);
   result.energy_j = component_sum(result.components_j);
-  if (removal) result.removed_mm3 = removal->removed_mm3;
-  if (result.removed_mm3 <= 0)
-    for (const CommandEnergy& ce : result.commands)
-      result.removed_mm3 += ce.removed_mm3;
   if (result.removed_mm3 > 0) result.sec_j_mm3 = result.energy_j / result.removed_mm3;
-  if (timeline.total_s > 0) result.duration_s = timeline.total_s;
+  if (program_duration_s > 0) result.duration_s = program_duration_s;
   if (result.duration_s > 0) result.mean_power_w = result.energy_j / result.duration_s;
   const double kwh = result.energy_j / kJoulesPerKwh;
-  result.co2_kg = kwh * options.co2_kg_per_kwh.value_or(constants.co2_kg_per_kwh);
-  result.cost = kwh * options.price_per_kwh.value_or(constants.price_per_kwh);
-  result.currency = options.currency.value_or(constants.currency);
+  result.co2_kg = kwh * options_.co2_kg_per_kwh.value_or(constants_.co2_kg_per_kwh);
+  result.cost = kwh * options_.price_per_kwh.value_or(constants_.price_per_kwh);
+  result.currency = options_.currency.value_or(constants_.currency);
+  return result;
+}
+
+EnergyResult integrate_energy(const std::vector<OperatingSegment>& trace, const Timeline& timeline,
+                              const RemovalResult* removal, const PowerConstants& constants,
+                              const EnergyOptions& options) {
+  // Segments by command (the trace is in program order; a command's segments are consecutive).
+  EnergyIntegrator integrator(constants, options);
+  EnergyResult result;
+  result.commands.resize(timeline.commands.size());
+  std::size_t s = 0;
+  std::vector<OperatingSegment> mine;
+  const CanonCommand still; // commands without segments: only their duration counts here
+  for (std::size_t i = 0; i < timeline.commands.size(); ++i) {
+    mine.clear();
+    while (s < trace.size() && trace[s].command < i)
+      ++s;
+    while (s < trace.size() && trace[s].command == i)
+      mine.push_back(trace[s++]);
+    const double removed =
+        removal && i < removal->commands.size() ? removal->commands[i].removed_mm3 : 0.0;
+    result.commands[i] = integrator.integrate(i, still, timeline.commands[i], mine, removed);
+    if (mine.empty() && timeline.commands[i].duration_s <= 0)
+      result.commands[i].mean_power_w = result.commands[i].peak_power_w = 0;
+  }
+  const EnergyResult totals = integrator.totals(timeline.total_s);
+  result.duration_s = totals.duration_s;
+  result.energy_j = totals.energy_j;
+  result.components_j = totals.components_j;
+  result.removed_mm3 = removal ? removal->removed_mm3 : totals.removed_mm3;
+  result.sec_j_mm3 = result.removed_mm3 > 0 ? result.energy_j / result.removed_mm3 : 0.0;
+  result.mean_power_w = totals.mean_power_w;
+  result.peak_power_w = totals.peak_power_w;
+  result.co2_kg = totals.co2_kg;
+  result.cost = totals.cost;
+  result.currency = totals.currency;
+  result.model_description = totals.model_description;
   return result;
 }
 
@@ -80,15 +133,38 @@ EnergyResult estimate_energy(const std::vector<CanonCommand>& commands, const Ti
                              const RemovalResult* removal, const PowerConstants& constants,
                              const EnergyOptions& options) {
   std::vector<Diagnostic> diagnostics;
-  const auto trace = operating_trace(commands, timeline, removal, &diagnostics);
-  EnergyResult result = integrate_energy(trace, timeline, removal, constants, options);
-  // Commands without duration report the power of their state.
-  for (CommandEnergy& ce : result.commands) {
-    if (ce.duration_s > 0) continue;
-    const std::size_t c = timeline.commands[ce.command].command;
-    if (c >= commands.size()) continue;
-    ce.mean_power_w = instantaneous_power(commands[c], constants);
-    ce.peak_power_w = std::max(ce.peak_power_w, ce.mean_power_w);
+  if (removal && removal->commands.size() != timeline.commands.size()) {
+    diagnostics.push_back({Severity::Warning, "", 1, 0,
+                           "removal results do not match the timeline (" +
+                               std::to_string(removal->commands.size()) + " vs " +
+                               std::to_string(timeline.commands.size()) +
+                               " commands): removal ignored"});
+    removal = nullptr;
+  }
+  EnergyIntegrator integrator(constants, options);
+  EnergyResult result;
+  result.commands.reserve(timeline.commands.size());
+  std::vector<OperatingSegment> segments;
+  for (std::size_t i = 0; i < timeline.commands.size(); ++i) {
+    const TimedCommand& tc = timeline.commands[i];
+    if (tc.command >= commands.size()) {
+      diagnostics.push_back({Severity::Warning, "", tc.line + 1, 0,
+                             "timed command refers to a command that does not exist"});
+      result.commands.push_back({});
+      continue;
+    }
+    segments.clear();
+    result.commands.push_back(integrator.add(i, commands[tc.command], tc,
+                                             removal ? &removal->commands[i] : nullptr, segments,
+                                             &diagnostics));
+  }
+  const EnergyResult totals = integrator.totals(timeline.total_s);
+  std::vector<CommandEnergy> per_command = std::move(result.commands);
+  result = totals;
+  result.commands = std::move(per_command);
+  if (removal) {
+    result.removed_mm3 = removal->removed_mm3;
+    result.sec_j_mm3 = result.removed_mm3 > 0 ? result.energy_j / result.removed_mm3 : 0.0;
   }
   result.diagnostics = std::move(diagnostics);
   return result;

@@ -88,6 +88,38 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
 
 } // namespace
 
+void append_operating_segments(std::size_t index, const CanonCommand& cmd, const TimedCommand& tc,
+                               const CommandRemoval* removal, double& previous_rpm,
+                               std::vector<OperatingSegment>& out,
+                               std::vector<Diagnostic>* diagnostics) {
+  const OperatingPoint base = state_point(cmd.state);
+  const double rpm = base.spindle_rpm;
+  if (tc.duration_s > 0) {
+    const double t0 = tc.start_s, t1 = tc.start_s + tc.duration_s;
+    if (is_move(tc.kind)) {
+      if (removal && !removal->step_volume_mm3.empty() && tc.samples.size() >= 2 &&
+          removal->step_volume_mm3.size() != tc.samples.size() - 1 && diagnostics)
+        diagnostics->push_back({Severity::Warning, "", tc.line + 1, 0,
+                                "step volumes do not match the samples of this move"});
+      add_move_segments(index, cmd, tc, removal, base, out);
+    } else if (tc.kind == CanonKind::ChangeTool) {
+      OperatingPoint op = base;
+      op.spindle_on = 0; // the spindle stands while the tool is swapped
+      op.spindle_rpm = 0;
+      op.tool_change = 1;
+      out.push_back({index, t0, t1, op, op});
+    } else if (is_spindle_command(tc.kind)) {
+      OperatingPoint from = base;
+      from.spindle_rpm = previous_rpm;
+      from.spindle_on = previous_rpm > 0 ? 1.0 : 0.0;
+      out.push_back({index, t0, t1, from, base});
+    } else {
+      out.push_back({index, t0, t1, base, base});
+    }
+  }
+  previous_rpm = rpm;
+}
+
 std::vector<OperatingSegment> operating_trace(const std::vector<CanonCommand>& commands,
                                               const Timeline& timeline,
                                               const RemovalResult* removal,
@@ -109,33 +141,8 @@ std::vector<OperatingSegment> operating_trace(const std::vector<CanonCommand>& c
       warn(tc.line, "timed command refers to a command that does not exist");
       continue;
     }
-    const CanonCommand& cmd = commands[tc.command];
-    const OperatingPoint base = state_point(cmd.state);
-    const double rpm = base.spindle_rpm;
-    if (tc.duration_s > 0) {
-      const double t0 = tc.start_s, t1 = tc.start_s + tc.duration_s;
-      const CommandRemoval* cr = removal ? &removal->commands[i] : nullptr;
-      if (is_move(tc.kind)) {
-        if (cr && !cr->step_volume_mm3.empty() && tc.samples.size() >= 2 &&
-            cr->step_volume_mm3.size() != tc.samples.size() - 1)
-          warn(tc.line, "step volumes do not match the samples of this move");
-        add_move_segments(i, cmd, tc, cr, base, trace);
-      } else if (tc.kind == CanonKind::ChangeTool) {
-        OperatingPoint op = base;
-        op.spindle_on = 0; // the spindle stands while the tool is swapped
-        op.spindle_rpm = 0;
-        op.tool_change = 1;
-        trace.push_back({i, t0, t1, op, op});
-      } else if (is_spindle_command(tc.kind)) {
-        OperatingPoint from = base;
-        from.spindle_rpm = previous_rpm;
-        from.spindle_on = previous_rpm > 0 ? 1.0 : 0.0;
-        trace.push_back({i, t0, t1, from, base});
-      } else {
-        trace.push_back({i, t0, t1, base, base});
-      }
-    }
-    previous_rpm = rpm;
+    append_operating_segments(i, commands[tc.command], tc, removal ? &removal->commands[i] : nullptr,
+                              previous_rpm, trace, diagnostics);
   }
   return trace;
 }

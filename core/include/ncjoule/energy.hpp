@@ -167,6 +167,13 @@ std::vector<OperatingSegment> operating_trace(const std::vector<CanonCommand>& c
                                               const RemovalResult* removal,
                                               std::vector<Diagnostic>* diagnostics = nullptr);
 
+// The segments of one timed command, appended to `out` (what operating_trace does for each).
+// `previous_rpm` is the spindle speed before the command (for spindle ramps); it is updated.
+void append_operating_segments(std::size_t index, const CanonCommand& command,
+                               const TimedCommand& timed, const CommandRemoval* removal,
+                               double& previous_rpm, std::vector<OperatingSegment>& out,
+                               std::vector<Diagnostic>* diagnostics = nullptr);
+
 // The operating point at time t (linear inside a segment). Before the first segment and after
 // the last the machine is idle: tare only. Segments must be sorted by time.
 OperatingPoint operating_point_at(const std::vector<OperatingSegment>& trace, double t_s);
@@ -207,6 +214,31 @@ struct EnergyResult {
   ComponentValues components_j{};
   std::string model_description;
   std::vector<Diagnostic> diagnostics;
+};
+
+// Energy one command at a time, in program order: estimate_energy for a pipeline that keeps no
+// program-sized lists. The totals add up the commands given so far.
+class EnergyIntegrator {
+public:
+  explicit EnergyIntegrator(const PowerConstants& constants, const EnergyOptions& options = {});
+  // The spindle speed before the first command (0: stopped).
+  void set_rpm_before(double rpm);
+  // One command: its operating segments (appended to `segments`) and its energy.
+  CommandEnergy add(std::size_t index, const CanonCommand& command, const TimedCommand& timed,
+                    const CommandRemoval* removal, std::vector<OperatingSegment>& segments,
+                    std::vector<Diagnostic>* diagnostics = nullptr);
+  // One command whose segments are already made (integrate_energy's form).
+  CommandEnergy integrate(std::size_t index, const CanonCommand& command,
+                          const TimedCommand& timed, const std::vector<OperatingSegment>& segments,
+                          double removed_mm3);
+  // The totals (no per-command list); `program_duration_s` > 0 replaces the sum of durations.
+  EnergyResult totals(double program_duration_s = 0) const;
+
+private:
+  const PowerConstants& constants_;
+  EnergyOptions options_;
+  double previous_rpm_ = 0;
+  EnergyResult totals_;
 };
 
 // Integrates power over every step of every command (trapezoid rule, MRR per step = step

@@ -2,6 +2,8 @@
 // A 3-axis tool only ever removes material above its lower envelope, so a column loses the tops
 // of its intervals and never splits one: its interval list only shrinks, in place.
 #include <algorithm>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <limits>
 
 #include "engines.hpp"
@@ -62,13 +64,7 @@ public:
         grid_, step, kParallelMinColumns, scratch_,
         [&](std::size_t tile) { return tile_top_[tile] <= zlow; },
         [&](std::size_t c, int, int, double x, double y, TileResult& acc) {
-          // The tool bottom never goes below the lowest tip: columns already at or below it
-          // need no envelope.
-          if (top_[c] <= zlow) return;
-          ++acc.cells_tested;
-          const double e = step.envelope_at(x, y);
-          if (e >= top_[c]) return;
-          acc.volume_mm3 += clip_column(c, e);
+          cut_column(step, zlow, c, x, y, acc);
         },
         [&](std::size_t tile, const TileResult& acc) {
           if (acc.volume_mm3 > 0) refresh_tile_top(tile);
@@ -80,7 +76,88 @@ public:
     return volume;
   }
 
+  // The batch: steps binned by the tiles their footprints touch; every tile, in parallel,
+  // applies its steps in order; a step's volume sums its tiles in tile order, as remove_step
+  // does, so the result is the same bit for bit.
+  void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes) override {
+    const std::size_t n = steps.size();
+    volumes.assign(n, 0.0);
+    if (n == 0) return;
+    std::vector<SweptStep> swept;
+    std::vector<FootprintRange> ranges;
+    swept.reserve(n);
+    ranges.reserve(n);
+    const int across = tiles_across(grid_);
+    tile_steps_.resize(tile_count(grid_));
+    std::vector<std::uint32_t> touched; // tiles with steps, in tile order
+    for (std::size_t k = 0; k < n; ++k) {
+      swept.emplace_back(*steps[k].tool, steps[k].from, steps[k].to);
+      ranges.push_back(footprint_range(grid_, swept.back()));
+      const FootprintRange& f = ranges.back();
+      if (f.empty()) continue;
+      for (int tj = f.tj0; tj <= f.tj1; ++tj)
+        for (int ti = f.ti0; ti <= f.ti1; ++ti) {
+          const std::size_t tile = std::size_t(tj) * std::size_t(across) + std::size_t(ti);
+          if (tile_steps_[tile].empty()) touched.push_back(std::uint32_t(tile));
+          tile_steps_[tile].push_back({std::uint32_t(k), {}});
+        }
+    }
+    std::sort(touched.begin(), touched.end());
+    auto run_tile = [&](std::size_t tile) {
+      const int ti = int(tile % std::size_t(across)), tj = int(tile / std::size_t(across));
+      for (TileStep& ts : tile_steps_[tile]) {
+        const SweptStep& step = swept[ts.step];
+        const double zlow = step.lowest_tip_z();
+        const bool skip = tile_top_[tile] <= zlow;
+        visit_tile_columns(
+            grid_, step, ranges[ts.step], ti, tj, skip,
+            [&](std::size_t c, int, int, double x, double y, TileResult& acc) {
+              cut_column(step, zlow, c, x, y, acc);
+            },
+            ts.result);
+        if (!skip && ts.result.volume_mm3 > 0) refresh_tile_top(tile);
+      }
+    };
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, touched.size(), 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t t = range.begin(); t != range.end(); ++t)
+            run_tile(touched[t]);
+        },
+        tbb::simple_partitioner());
+    // Tile order, step by step: the order remove_step adds them in.
+    std::vector<double> length(n, 0.0);
+    for (std::uint32_t tile : touched) {
+      for (const TileStep& ts : tile_steps_[tile]) {
+        length[ts.step] += ts.result.volume_mm3;
+        stats_.columns_visited += ts.result.columns_visited;
+        stats_.cells_tested += ts.result.cells_tested;
+      }
+      tile_steps_[tile].clear();
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      volumes[k] = length[k] * grid_.dx * grid_.dy;
+    stats_.steps += n;
+  }
+
 private:
+  struct TileStep {
+    std::uint32_t step = 0;
+    TileResult result;
+  };
+
+  // Cuts column c down to the step's envelope.
+  void cut_column(const SweptStep& step, double zlow, std::size_t c, double x, double y,
+                  TileResult& acc) {
+    // The tool bottom never goes below the lowest tip: columns already at or below it need no
+    // envelope.
+    if (top_[c] <= zlow) return;
+    ++acc.cells_tested;
+    const double e = step.envelope_at(x, y);
+    if (e >= top_[c]) return;
+    acc.volume_mm3 += clip_column(c, e);
+  }
+
   // The tile's highest column top, after its columns were cut.
   void refresh_tile_top(std::size_t tile) {
     const int across = tiles_across(grid_);
@@ -126,6 +203,7 @@ private:
   std::vector<double> top_;      // top of each column's material: most columns stop here
   std::vector<double> tile_top_; // highest top_ in each tile: whole tiles stop here
   std::vector<TileResult> scratch_;
+  std::vector<std::vector<TileStep>> tile_steps_; // remove_steps: each tile's steps, in order
   EngineStats stats_;
 };
 

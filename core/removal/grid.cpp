@@ -21,6 +21,13 @@ GridFrame make_grid(const Box3& bounds, double spacing_mm) {
   return g;
 }
 
+void RemovalEngine::remove_steps(const std::vector<RemovalStep>& steps,
+                                 std::vector<double>& volumes) {
+  volumes.resize(steps.size());
+  for (std::size_t k = 0; k < steps.size(); ++k)
+    volumes[k] = remove_step(*steps[k].tool, steps[k].from, steps[k].to);
+}
+
 std::string_view engine_name(EngineKind kind) {
   return kind == EngineKind::Voxel ? "voxel" : "dexel";
 }
@@ -40,11 +47,39 @@ double default_grid_spacing(const std::map<int, Tool>& tools) {
   return std::clamp(smallest / 120.0, 0.01, 1.0);
 }
 
-double recommended_sample_step(const std::map<int, Tool>& tools, double grid_mm) {
-  double step = grid_mm > 0 ? grid_mm : default_grid_spacing(tools);
+double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
+                              double work_columns) {
+  const double fine = default_grid_spacing(tools);
+  double smallest = 0;
   for (const auto& [number, tool] : tools)
-    if (tool.diameter_mm > 0) step = std::min(step, tool.radius() / 4);
-  return step;
+    if (tool.diameter_mm > 0 && (smallest == 0 || tool.diameter_mm < smallest))
+      smallest = tool.diameter_mm;
+  const double coarse = smallest > 0 ? std::clamp(smallest / 10.0, fine, 2.0) : fine;
+  // Columns visited: per step of length s, a band 2r wide and 2r + s long, over dx^2 each.
+  auto work = [&](double dx) {
+    const double s = recommended_sample_step(tools, dx);
+    double w = 0;
+    for (const auto& [number, tool] : tools) {
+      const double r = tool.reach_radius();
+      w += extent.cutting_length(number) / s * (2 * r) * (2 * r + s) / (dx * dx);
+    }
+    return w;
+  };
+  double dx = fine;
+  while (dx < coarse && work(dx) > work_columns)
+    dx = std::min(coarse, dx * 1.25);
+  return dx;
+}
+
+double recommended_sample_step(const std::map<int, Tool>& tools, double grid_mm) {
+  double radius = 0;
+  for (const auto& [number, tool] : tools)
+    if (tool.diameter_mm > 0 && (radius == 0 || tool.radius() < radius)) radius = tool.radius();
+  const double grid = grid_mm > 0 ? grid_mm : default_grid_spacing(tools);
+  // A whole number of grid pitches: a step along a grid axis then crosses the same number of
+  // columns every time, and the MRR of a steady cut is steady from step to step.
+  const double wanted = std::min(std::max(grid, radius / 4), std::max(grid, 1.0));
+  return grid * std::max(1.0, std::round(wanted / grid));
 }
 
 } // namespace ncjoule

@@ -1,5 +1,6 @@
 // Playing a timed program on the stock: the volume of every sampled step, per command and in
-// total, the MRR through each command, and collisions of rapids with the stock.
+// total, the MRR through each command, and collisions of rapids with the stock. The memory of
+// the stock model is estimated before it is allocated, and checked against a budget.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,31 +31,6 @@ std::string format_mm3(double v) {
   return buf;
 }
 
-// The tools the program's moves use (for the default grid and sample step).
-std::map<int, Tool> tools_in_use(const std::vector<CanonCommand>& commands,
-                                 const std::map<int, Tool>& tools) {
-  std::map<int, Tool> used;
-  for (const CanonCommand& c : commands)
-    if (is_move(c.kind))
-      if (auto it = tools.find(c.state.tool); it != tools.end()) used.insert(*it);
-  return used.empty() ? tools : used;
-}
-
-// The Z levels of the cutting moves' end points (flat floors, plunge bottoms), for the voxel
-// engine's layer boundaries.
-std::vector<double> cutting_levels(const std::vector<CanonCommand>& commands,
-                                   const std::map<int, Tool>& tools) {
-  std::vector<double> levels;
-  for (const CanonCommand& c : commands)
-    if ((c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) && tools.count(c.state.tool)) {
-      levels.push_back(c.start.z);
-      levels.push_back(c.end.z);
-    }
-  std::sort(levels.begin(), levels.end());
-  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
-  return levels;
-}
-
 // Sample points of a move; when the planner gave none, the move's own geometry at a fixed
 // number of points, evenly spread in time.
 std::vector<MotionSample> samples_of(const TimedCommand& tc, const CanonCommand& cmd,
@@ -72,137 +48,246 @@ std::vector<MotionSample> samples_of(const TimedCommand& tc, const CanonCommand&
   return out;
 }
 
+// The memory a column of the dexel engine takes: its first index, count and top, a share of a
+// tile's top, and its intervals (one for a box, a few for a mesh).
+std::size_t dexel_column_bytes(StockSpec::Kind kind) {
+  const std::size_t intervals = kind == StockSpec::Kind::Stl ? 3 : 1;
+  return sizeof(std::uint32_t) + sizeof(std::uint16_t) + sizeof(double) +
+         intervals * sizeof(ZInterval);
+}
+
+std::string mib(std::size_t bytes) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f MiB", double(bytes) / (1 << 20));
+  return buf;
+}
+
 } // namespace
 
-RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const Timeline& timeline,
-                               const std::map<int, Tool>& tools, const StockSpec& spec,
-                               const RemovalOptions& options) {
-  RemovalResult result;
-  result.engine = options.engine;
-  result.commands.resize(timeline.commands.size());
+std::size_t estimated_removal_memory(EngineKind engine, const GridFrame& grid,
+                                     StockSpec::Kind stock_kind) {
+  const double columns = double(grid.nx) * double(grid.ny);
+  if (engine == EngineKind::Voxel) {
+    const double layers = double(voxel_layer_bounds(grid).size() - 1);
+    return std::size_t(std::min(columns * layers, 1e18));
+  }
+  return std::size_t(std::min(columns * double(dexel_column_bytes(stock_kind)), 1e18));
+}
+
+RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& extent,
+                                   const std::map<int, Tool>& tools, const RemovalOptions& options)
+    : tools_(tools), options_(options) {
+  totals_.engine = options.engine;
   auto diag = [&](Severity s, int line, std::string message) {
-    result.diagnostics.push_back({s, options.source_path, line, 0, std::move(message)});
+    totals_.diagnostics.push_back({s, options.source_path, line, 0, std::move(message)});
   };
-  for (const auto& [number, tool] : tools)
-    if (const std::string problem = tool_problem(tool); !problem.empty())
-      diag(Severity::Error, 0, "tool T" + std::to_string(number) + " " + problem);
+  for (auto it = tools_.begin(); it != tools_.end();) {
+    if (const std::string problem = tool_problem(it->second); !problem.empty()) {
+      diag(Severity::Error, 0, "tool T" + std::to_string(it->first) + " " + problem);
+      it = tools_.erase(it);
+    } else {
+      ++it;
+    }
+  }
 
   // The stock.
-  std::unique_ptr<StockShape> stock;
   switch (spec.kind) {
   case StockSpec::Kind::Box:
-    stock = make_box_stock(spec.box, format_box(spec.box) + " (given)");
+    stock_ = make_box_stock(spec.box, format_box(spec.box) + " (given)");
     break;
   case StockSpec::Kind::Stl: {
     std::string error;
     auto mesh = read_stl(spec.stl_path, error);
     if (!mesh) {
       diag(Severity::Error, 0, "stock: " + error + "; nothing is removed");
-      result.stock_description = "none (" + spec.stl_path + " could not be read)";
-      return result;
+      totals_.stock_description = "none (" + spec.stl_path + " could not be read)";
+      return;
     }
     const std::string text = "STL " + spec.stl_path + " (" +
                              std::to_string(mesh->triangles.size()) + " triangles, bounds " +
                              format_box(mesh->bounds()) + ")";
-    stock = make_mesh_stock(std::move(*mesh), text);
+    stock_ = make_mesh_stock(std::move(*mesh), text);
     break;
   }
   case StockSpec::Kind::Default: {
-    const auto box = default_stock_box(commands, timeline, tools);
+    const auto box = extent.box(tools_);
     if (!box || box->empty()) {
       const char* why = !box ? "the program has no cutting move with a known tool"
                              : "every cutting move is at one Z level";
       diag(Severity::Warning, 0,
            std::string("no stock given and ") + why +
                ": nothing is removed (give a stock box or STL)");
-      result.stock_description = "none (no stock given, and " + std::string(why) + ")";
-      return result;
+      totals_.stock_description = "none (no stock given, and " + std::string(why) + ")";
+      return;
     }
-    stock = make_box_stock(*box, format_box(*box) +
-                                     " (default: bounding box of the cutting moves, XY widened "
-                                     "by the tool radius, Z from the lowest cut up to the "
-                                     "highest level at which a cutting move travels in XY)");
+    stock_ = make_box_stock(*box, format_box(*box) +
+                                      " (default: bounding box of the cutting moves, XY widened "
+                                      "by the tool radius, Z from the lowest cut up to the "
+                                      "highest level at which a cutting move travels in XY)");
     break;
   }
   }
-  const Box3 bounds = stock->bounds();
+  totals_.stock_description = stock_->description();
+  const Box3 bounds = stock_->bounds();
   if (bounds.empty()) {
     diag(Severity::Error, 0, "stock has no volume: nothing is removed");
-    result.stock_description = stock->description();
-    return result;
+    return;
   }
 
-  // The grid.
-  const std::map<int, Tool> used = tools_in_use(commands, tools);
-  double spacing = options.grid_mm > 0 ? options.grid_mm : default_grid_spacing(used);
-  const std::vector<double> levels = cutting_levels(commands, tools);
+  // The grid: the one given, or the automatic one within the cell caps and the memory budget.
+  const std::size_t budget =
+      options.memory_budget_bytes ? options.memory_budget_bytes : kDefaultRemovalMemoryBudget;
+  const std::vector<double> levels =
+      options.engine == EngineKind::Voxel ? extent.cutting_levels() : std::vector<double>{};
   auto grid_at = [&](double mm) {
     GridFrame g = make_grid(bounds, mm);
-    if (options.engine == EngineKind::Voxel) g.z_levels = levels;
+    g.z_levels = levels;
     return g;
   };
-  GridFrame grid = grid_at(spacing);
   auto cells = [&](const GridFrame& g) {
     double n = double(g.nx) * double(g.ny);
     if (options.engine == EngineKind::Voxel) n *= double(voxel_layer_bounds(g).size() - 1);
     return n;
   };
-  const double limit =
+  const double cell_limit =
       double(options.engine == EngineKind::Voxel ? options.max_voxels : options.max_columns);
-  if (cells(grid) > limit) {
+  double spacing = options.grid_mm > 0 ? options.grid_mm
+                                       : automatic_grid_spacing(extent, tools_, options.work_columns);
+  // Far too fine a grid is refused before its frame is even made: its cell count would overflow.
+  const double width = std::max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin);
+  if (!(spacing > 0) || !std::isfinite(spacing) || width / spacing > 1e8) {
+    diag(Severity::Error, 0,
+         "removal grid of " + format_mm3(spacing) + " mm over a stock " + format_mm3(width) +
+             " mm wide has too many columns: give a coarser --grid");
+    return;
+  }
+  grid_ = grid_at(spacing);
+  const bool given = options.grid_mm > 0;
+  const std::size_t needed = estimated_removal_memory(options.engine, grid_, spec.kind);
+  if (given && needed > budget) {
+    diag(Severity::Error, 0,
+         "removal grid of " + format_mm3(spacing) + " mm over the stock needs about " +
+             mib(needed) + ", over the memory budget of " + mib(budget) +
+             ": give a coarser --grid, or a larger --memory-limit; nothing is removed");
+    return;
+  }
+  if (!given && (cells(grid_) > cell_limit || needed > budget)) {
     const double power = options.engine == EngineKind::Voxel ? 1.0 / 3.0 : 0.5;
-    while (cells(grid) > limit) {
-      spacing *= std::max(1.01, std::pow(cells(grid) / limit, power));
-      grid = grid_at(spacing);
+    while (cells(grid_) > cell_limit ||
+           estimated_removal_memory(options.engine, grid_, spec.kind) > budget) {
+      const double over =
+          std::max(cells(grid_) / cell_limit,
+                   double(estimated_removal_memory(options.engine, grid_, spec.kind)) /
+                       double(budget));
+      spacing *= std::max(1.01, std::pow(over, power));
+      grid_ = grid_at(spacing);
     }
     diag(Severity::Note, 0,
-         "grid coarsened to " + format_mm3(spacing) + " mm to stay within " +
-             std::to_string(std::size_t(limit)) + " cells");
+         "removal grid coarsened to " + format_mm3(spacing) + " mm to stay within " +
+             std::to_string(std::size_t(cell_limit)) + " cells and " + mib(budget));
   }
-  const std::unique_ptr<RemovalEngine> engine = make_removal_engine(options.engine, *stock, grid);
-  result.grid = grid;
-  result.stock_description = stock->description();
-  result.stock_volume_mm3 = engine->material_volume_mm3();
-  result.memory_bytes = engine->memory_bytes();
+  engine_ = make_removal_engine(options.engine, *stock_, grid_);
+  totals_.grid = grid_;
+  totals_.stock_volume_mm3 = engine_->material_volume_mm3();
+  totals_.memory_bytes = engine_->memory_bytes();
+  sample_step_ = recommended_sample_step(tools_, spacing);
+}
 
-  // The moves, step by step.
-  const double fallback_step = recommended_sample_step(used, spacing);
-  bool warned_no_samples = false;
+RemovalSimulator::~RemovalSimulator() = default;
+
+void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
+                              std::vector<CommandRemoval>& out) {
+  out.assign(moves.size(), CommandRemoval{});
+  if (!engine_) return;
+  // Every move's steps, in order, in one batch; first[k] is move k's first step.
+  steps_.clear();
+  std::vector<std::size_t> first(moves.size() + 1, 0);
+  std::vector<std::vector<MotionSample>> sampled(moves.size());
+  for (std::size_t k = 0; k < moves.size(); ++k) {
+    first[k] = steps_.size();
+    const CanonCommand& cmd = *moves[k].command;
+    const TimedCommand& tc = *moves[k].timed;
+    if (!is_move(cmd.kind)) continue;
+    const auto tool = tools_.find(cmd.state.tool);
+    if (tool == tools_.end()) continue;
+    if (tc.samples.size() < 2 && !warned_no_samples_ && move_length(cmd) > 0) {
+      warned_no_samples_ = true;
+      totals_.diagnostics.push_back({Severity::Note, options_.source_path, tc.line + 1, 0,
+                                     "moves without path samples are sampled evenly in time by "
+                                     "removal"});
+    }
+    const std::vector<MotionSample>* samples = &tc.samples;
+    if (tc.samples.size() < 2) {
+      sampled[k] = samples_of(tc, cmd, sample_step_ > 0 ? sample_step_ : 1.0);
+      samples = &sampled[k];
+    }
+    for (std::size_t s = 0; s + 1 < samples->size(); ++s) {
+      const Pose& a = (*samples)[s].position;
+      const Pose& b = (*samples)[s + 1].position;
+      steps_.push_back({&tool->second, {a.x, a.y, a.z}, {b.x, b.y, b.z}});
+    }
+    out[k].step_volume_mm3.resize(samples->size() - 1);
+  }
+  first[moves.size()] = steps_.size();
+  engine_->remove_steps(steps_, volumes_);
+
+  for (std::size_t k = 0; k < moves.size(); ++k) {
+    CommandRemoval& r = out[k];
+    if (r.step_volume_mm3.empty()) continue;
+    const CanonCommand& cmd = *moves[k].command;
+    const TimedCommand& tc = *moves[k].timed;
+    const std::vector<MotionSample>& samples = sampled[k].empty() ? tc.samples : sampled[k];
+    for (std::size_t s = 0; s < r.step_volume_mm3.size(); ++s) {
+      const double v = volumes_[first[k] + s];
+      r.step_volume_mm3[s] = v;
+      r.removed_mm3 += v;
+      const double dt = samples[s + 1].t_s - samples[s].t_s;
+      if (dt > 0) r.mrr_peak_mm3_s = std::max(r.mrr_peak_mm3_s, v / dt);
+    }
+    if (tc.duration_s > 0) r.mrr_mean_mm3_s = r.removed_mm3 / tc.duration_s;
+    totals_.removed_mm3 += r.removed_mm3;
+    if (cmd.kind == CanonKind::Traverse && r.removed_mm3 > kCollisionMinMm3) {
+      r.collision = true;
+      totals_.diagnostics.push_back(
+          {Severity::Warning, options_.source_path, tc.line + 1, 0,
+           "rapid move cuts " + format_mm3(r.removed_mm3) + " mm^3 of stock with tool T" +
+               std::to_string(cmd.state.tool) + " (collision)"});
+    }
+  }
+}
+
+RemovalResult RemovalSimulator::summary() const {
+  RemovalResult r = totals_;
+  if (engine_) {
+    r.memory_bytes = std::max(r.memory_bytes, engine_->memory_bytes());
+    r.stats = engine_->stats();
+  }
+  return r;
+}
+
+RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const Timeline& timeline,
+                               const std::map<int, Tool>& tools, const StockSpec& spec,
+                               const RemovalOptions& options) {
+  StockExtent extent;
+  for (const TimedCommand& tc : timeline.commands)
+    if (tc.command < commands.size()) extent.add(commands[tc.command]);
+  // The tools moves use (the grid is sized for them).
+  std::map<int, Tool> used;
+  for (const CanonCommand& c : commands)
+    if (is_move(c.kind))
+      if (auto it = tools.find(c.state.tool); it != tools.end()) used.insert(*it);
+  RemovalSimulator simulator(spec, extent, used.empty() ? tools : used, options);
+  std::vector<TimedMove> moves;
   for (std::size_t k = 0; k < timeline.commands.size(); ++k) {
     const TimedCommand& tc = timeline.commands[k];
-    if (tc.command >= commands.size()) continue;
-    const CanonCommand& cmd = commands[tc.command];
-    if (!is_move(cmd.kind)) continue;
-    const auto tool = tools.find(cmd.state.tool);
-    if (tool == tools.end() || !tool_problem(tool->second).empty()) continue;
-    if (tc.samples.size() < 2 && !warned_no_samples && move_length(cmd) > 0) {
-      warned_no_samples = true;
-      diag(Severity::Note, tc.line + 1,
-           "moves without path samples are sampled evenly in time by removal");
-    }
-    const std::vector<MotionSample> samples = samples_of(tc, cmd, fallback_step);
-    CommandRemoval& out = result.commands[k];
-    out.step_volume_mm3.resize(samples.size() - 1);
-    for (std::size_t s = 0; s + 1 < samples.size(); ++s) {
-      const Pose& a = samples[s].position;
-      const Pose& b = samples[s + 1].position;
-      const double v = engine->remove_step(tool->second, {a.x, a.y, a.z}, {b.x, b.y, b.z});
-      out.step_volume_mm3[s] = v;
-      out.removed_mm3 += v;
-      const double dt = samples[s + 1].t_s - samples[s].t_s;
-      if (dt > 0) out.mrr_peak_mm3_s = std::max(out.mrr_peak_mm3_s, v / dt);
-    }
-    if (tc.duration_s > 0) out.mrr_mean_mm3_s = out.removed_mm3 / tc.duration_s;
-    result.removed_mm3 += out.removed_mm3;
-    if (cmd.kind == CanonKind::Traverse && out.removed_mm3 > kCollisionMinMm3) {
-      out.collision = true;
-      diag(Severity::Warning, tc.line + 1,
-           "rapid move cuts " + format_mm3(out.removed_mm3) + " mm^3 of stock with tool T" +
-               std::to_string(cmd.state.tool) + " (collision)");
-    }
+    if (tc.command < commands.size()) moves.push_back({k, &commands[tc.command], &tc});
   }
-  result.memory_bytes = std::max(result.memory_bytes, engine->memory_bytes());
-  result.stats = engine->stats();
+  std::vector<CommandRemoval> removed;
+  simulator.remove(moves, removed);
+  RemovalResult result = simulator.summary();
+  result.commands.resize(timeline.commands.size());
+  for (std::size_t m = 0; m < moves.size(); ++m)
+    result.commands[moves[m].index] = std::move(removed[m]);
   return result;
 }
 

@@ -67,46 +67,79 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* er
               "' is neither box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX nor an .stl file");
 }
 
-std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
-                                      const Timeline& timeline, const std::map<int, Tool>& tools) {
-  constexpr double inf = std::numeric_limits<double>::infinity();
+void StockExtent::add(const CanonCommand& cmd) {
+  if (!is_cutting(cmd.kind)) return;
   // A level move: travels in XY and starts and ends at one Z (lines, XY arcs).
   constexpr double kMinXyMm = 1e-6, kSameZMm = 1e-9;
+  PerTool& t = tools_[cmd.state.tool];
+  auto include = [&](const Pose& p) {
+    t.xmin = std::min(t.xmin, p.x), t.xmax = std::max(t.xmax, p.x);
+    t.ymin = std::min(t.ymin, p.y), t.ymax = std::max(t.ymax, p.y);
+    t.zmin = std::min(t.zmin, p.z);
+  };
+  include(cmd.start);
+  include(cmd.end);
+  // An arc's sides bulge past its end points: walk along it.
+  if (cmd.kind == CanonKind::Arc)
+    for (int k = 1; k < 64; ++k)
+      include(point_on_move(cmd, k / 64.0));
+  t.top_start = std::max(t.top_start, cmd.start.z);
+  t.length += move_length(cmd);
+  const bool travels_in_xy =
+      cmd.kind == CanonKind::Arc ||
+      std::hypot(cmd.end.x - cmd.start.x, cmd.end.y - cmd.start.y) > kMinXyMm;
+  if (travels_in_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
+    t.top_level = std::max(t.top_level, cmd.start.z);
+  if (levels_.size() < kMaxLevels) {
+    levels_.push_back(cmd.start.z);
+    levels_.push_back(cmd.end.z);
+    if (levels_.size() >= 2 * kMaxLevels) {
+      std::sort(levels_.begin(), levels_.end());
+      levels_.erase(std::unique(levels_.begin(), levels_.end()), levels_.end());
+    }
+  }
+}
+
+std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
+  constexpr double inf = std::numeric_limits<double>::infinity();
   Box3 b{inf, inf, inf, -inf, -inf, -inf};
   double top_level = -inf; // highest Z of a level move
   double top_start = -inf; // highest Z a cutting move starts from (drilling-only programs)
   bool any = false;
-  auto include = [&](const Pose& p, double radius) {
-    b.xmin = std::min(b.xmin, p.x - radius), b.xmax = std::max(b.xmax, p.x + radius);
-    b.ymin = std::min(b.ymin, p.y - radius), b.ymax = std::max(b.ymax, p.y + radius);
-    b.zmin = std::min(b.zmin, p.z);
-  };
-  for (const TimedCommand& tc : timeline.commands) {
-    if (tc.command >= commands.size()) continue;
-    const CanonCommand& cmd = commands[tc.command];
-    if (!is_cutting(cmd.kind)) continue;
-    const auto tool = tools.find(cmd.state.tool);
-    if (tool == tools.end()) continue;
+  for (const auto& [number, t] : tools_) {
+    const auto tool = tools.find(number);
+    if (tool == tools.end()) continue; // moves of an unknown tool are left out
     const double r = tool->second.radius();
     any = true;
-    include(cmd.start, r);
-    include(cmd.end, r);
-    for (const MotionSample& s : tc.samples)
-      include(s.position, r);
-    // An arc's sides bulge past its end points: without samples, walk along it.
-    if (cmd.kind == CanonKind::Arc && tc.samples.size() < 3)
-      for (int k = 1; k < 64; ++k)
-        include(point_on_move(cmd, k / 64.0), r);
-    top_start = std::max(top_start, cmd.start.z);
-    const bool travels_in_xy =
-        cmd.kind == CanonKind::Arc ||
-        std::hypot(cmd.end.x - cmd.start.x, cmd.end.y - cmd.start.y) > kMinXyMm;
-    if (travels_in_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
-      top_level = std::max(top_level, cmd.start.z);
+    b.xmin = std::min(b.xmin, t.xmin - r), b.xmax = std::max(b.xmax, t.xmax + r);
+    b.ymin = std::min(b.ymin, t.ymin - r), b.ymax = std::max(b.ymax, t.ymax + r);
+    b.zmin = std::min(b.zmin, t.zmin);
+    top_level = std::max(top_level, t.top_level);
+    top_start = std::max(top_start, t.top_start);
   }
   if (!any) return std::nullopt;
   b.zmax = top_level > -inf ? top_level : top_start;
   return b; // may have no height (every level move at one Z): the caller says so
+}
+
+std::vector<double> StockExtent::cutting_levels() const {
+  std::vector<double> levels = levels_;
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  return levels;
+}
+
+double StockExtent::cutting_length(int number) const {
+  const auto it = tools_.find(number);
+  return it == tools_.end() ? 0.0 : it->second.length;
+}
+
+std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
+                                      const Timeline& timeline, const std::map<int, Tool>& tools) {
+  StockExtent extent;
+  for (const TimedCommand& tc : timeline.commands)
+    if (tc.command < commands.size()) extent.add(commands[tc.command]);
+  return extent.box(tools);
 }
 
 } // namespace ncjoule

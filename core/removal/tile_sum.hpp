@@ -38,6 +38,56 @@ struct TileResult {
   std::uint64_t cells_tested = 0;
 };
 
+// The columns a step's footprint may cover, as index ranges, and the tiles they fall in.
+struct FootprintRange {
+  int i0 = 0, i1 = -1, j0 = 0, j1 = -1;     // columns
+  int ti0 = 0, ti1 = -1, tj0 = 0, tj1 = -1; // tiles
+  bool empty() const { return i0 > i1 || j0 > j1; }
+};
+
+inline int first_column_index(double lo, double origin, double d) {
+  return int(std::ceil((lo - origin) / d - 0.5));
+}
+inline int last_column_index(double hi, double origin, double d) {
+  return int(std::floor((hi - origin) / d - 0.5));
+}
+
+inline FootprintRange footprint_range(const GridFrame& grid, const SweptStep& step) {
+  FootprintRange f;
+  f.i0 = std::max(0, first_column_index(step.footprint_xmin(), grid.x0, grid.dx));
+  f.i1 = std::min(grid.nx - 1, last_column_index(step.footprint_xmax(), grid.x0, grid.dx));
+  f.j0 = std::max(0, first_column_index(step.footprint_ymin(), grid.y0, grid.dy));
+  f.j1 = std::min(grid.ny - 1, last_column_index(step.footprint_ymax(), grid.y0, grid.dy));
+  if (f.empty()) return f;
+  f.ti0 = f.i0 / kTileColumns, f.ti1 = f.i1 / kTileColumns;
+  f.tj0 = f.j0 / kTileColumns, f.tj1 = f.j1 / kTileColumns;
+  return f;
+}
+
+// Visits the footprint's columns in tile (ti, tj), row by row (visit_column as below); with
+// `skip`, the columns are only counted as visited.
+template <class VisitColumn>
+void visit_tile_columns(const GridFrame& grid, const SweptStep& step, const FootprintRange& f,
+                        int ti, int tj, bool skip, VisitColumn&& visit_column, TileResult& r) {
+  const int ia = std::max(f.i0, ti * kTileColumns);
+  const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
+  const int ja = std::max(f.j0, tj * kTileColumns);
+  const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
+  for (int j = ja; j <= jb; ++j) {
+    const double y = grid.column_y(j);
+    double xlo, xhi;
+    if (!step.row_span(y, xlo, xhi)) continue;
+    const int a = std::max(ia, first_column_index(xlo, grid.x0, grid.dx));
+    const int b = std::min(ib, last_column_index(xhi, grid.x0, grid.dx));
+    if (a > b) continue;
+    r.columns_visited += std::uint64_t(b - a + 1);
+    if (skip) continue;
+    const std::size_t row = std::size_t(j) * std::size_t(grid.nx);
+    for (int i = a; i <= b; ++i)
+      visit_column(row + std::size_t(i), i, j, grid.column_x(i), y, r);
+  }
+}
+
 // Calls visit_column(column index, i, j, x, y, TileResult&) for every column whose centre the
 // step's footprint may cover, tile by tile, except in tiles where skip_tile(tile) is true (their
 // columns still count as visited); tile_done(tile, result) follows each tile that was not
@@ -49,50 +99,22 @@ TileResult for_each_footprint_column(const GridFrame& grid, const SweptStep& ste
                                      std::size_t parallel_min_columns,
                                      std::vector<TileResult>& scratch, SkipTile&& skip_tile,
                                      VisitColumn&& visit_column, TileDone&& tile_done) {
-  auto first_index = [](double lo, double origin, double d) {
-    return int(std::ceil((lo - origin) / d - 0.5));
-  };
-  auto last_index = [](double hi, double origin, double d) {
-    return int(std::floor((hi - origin) / d - 0.5));
-  };
-  const int i0 = std::max(0, first_index(step.footprint_xmin(), grid.x0, grid.dx));
-  const int i1 = std::min(grid.nx - 1, last_index(step.footprint_xmax(), grid.x0, grid.dx));
-  const int j0 = std::max(0, first_index(step.footprint_ymin(), grid.y0, grid.dy));
-  const int j1 = std::min(grid.ny - 1, last_index(step.footprint_ymax(), grid.y0, grid.dy));
-  if (i0 > i1 || j0 > j1) return {};
-
-  const int ti0 = i0 / kTileColumns, ti1 = i1 / kTileColumns;
-  const int tj0 = j0 / kTileColumns, tj1 = j1 / kTileColumns;
-  const int tiles_x = ti1 - ti0 + 1;
-  const std::size_t tiles = std::size_t(tiles_x) * std::size_t(tj1 - tj0 + 1);
+  const FootprintRange f = footprint_range(grid, step);
+  if (f.empty()) return {};
+  const int tiles_x = f.ti1 - f.ti0 + 1;
+  const std::size_t tiles = std::size_t(tiles_x) * std::size_t(f.tj1 - f.tj0 + 1);
 
   auto run_tile = [&](std::size_t t) {
     TileResult r;
-    const int ti = ti0 + int(t % tiles_x), tj = tj0 + int(t / tiles_x);
+    const int ti = f.ti0 + int(t % tiles_x), tj = f.tj0 + int(t / tiles_x);
     const std::size_t tile = tile_of(grid, ti * kTileColumns, tj * kTileColumns);
     const bool skip = skip_tile(tile);
-    const int ia = std::max(i0, ti * kTileColumns);
-    const int ib = std::min(i1, ti * kTileColumns + kTileColumns - 1);
-    const int ja = std::max(j0, tj * kTileColumns);
-    const int jb = std::min(j1, tj * kTileColumns + kTileColumns - 1);
-    for (int j = ja; j <= jb; ++j) {
-      const double y = grid.column_y(j);
-      double xlo, xhi;
-      if (!step.row_span(y, xlo, xhi)) continue;
-      const int a = std::max(ia, first_index(xlo, grid.x0, grid.dx));
-      const int b = std::min(ib, last_index(xhi, grid.x0, grid.dx));
-      if (a > b) continue;
-      r.columns_visited += std::uint64_t(b - a + 1);
-      if (skip) continue;
-      const std::size_t row = std::size_t(j) * std::size_t(grid.nx);
-      for (int i = a; i <= b; ++i)
-        visit_column(row + std::size_t(i), i, j, grid.column_x(i), y, r);
-    }
+    visit_tile_columns(grid, step, f, ti, tj, skip, visit_column, r);
     if (!skip) tile_done(tile, r);
     return r;
   };
 
-  const std::size_t footprint = std::size_t(i1 - i0 + 1) * std::size_t(j1 - j0 + 1);
+  const std::size_t footprint = std::size_t(f.i1 - f.i0 + 1) * std::size_t(f.j1 - f.j0 + 1);
   TileResult total;
   auto add = [&total](const TileResult& r) {
     total.volume_mm3 += r.volume_mm3;

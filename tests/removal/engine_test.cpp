@@ -127,8 +127,13 @@ TEST_CASE("air moves remove nothing; a rapid through the stock is a collision") 
 TEST_CASE("grid and sample step helpers") {
   const std::map<int, Tool> tools{{1, flat_end_mill(1, 12)}, {2, ball_end_mill(2, 3)}};
   CHECK(default_grid_spacing(tools) == doctest::Approx(3.0 / 120));
-  CHECK(recommended_sample_step(tools, 0.5) == doctest::Approx(1.5 / 4));
-  CHECK(recommended_sample_step(tools, 0.1) == doctest::Approx(0.1));
+  // Steps: a quarter of the smallest radius (0.375 mm), as a whole number of grid pitches, at
+  // least one pitch, and no longer than 1 mm unless the grid is coarser.
+  CHECK(recommended_sample_step(tools, 0.5) == doctest::Approx(0.5));
+  CHECK(recommended_sample_step(tools, 0.1) == doctest::Approx(0.4));
+  CHECK(recommended_sample_step(tools, 0.025) == doctest::Approx(0.375));
+  CHECK(recommended_sample_step({{1, flat_end_mill(1, 20)}}, 0.1) == doctest::Approx(1.0));
+  CHECK(recommended_sample_step({{1, flat_end_mill(1, 20)}}, 1.5) == doctest::Approx(1.5));
   const GridFrame g = make_grid({0, 0, 0, 155, 2, 1}, 0.1);
   CHECK(g.nx == 1550);
   CHECK(g.ny == 20);

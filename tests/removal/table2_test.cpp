@@ -82,7 +82,7 @@ void check_cut(const Table2Cut& cut, double step, double tolerance, bool check_t
     while (full < mrr.size() && mrr[full] < expected * (1 - 1e-4))
       ++full;
     REQUIRE(full < mrr.size());
-    CHECK(full > first + 3); // a visible ramp, several steps long
+    CHECK(full > first + 1); // a visible ramp, more than one step long
     CHECK(mrr[first] < 0.5 * expected);
     for (std::size_t s = first; s < full; ++s)
       CHECK(mrr[s + 1] >= mrr[s] * (1 - 1e-9));
@@ -92,7 +92,7 @@ void check_cut(const Table2Cut& cut, double step, double tolerance, bool check_t
     std::size_t leave = last;
     while (leave > 0 && mrr[leave] < expected * (1 - 1e-4))
       --leave;
-    CHECK(last > leave + 3);
+    CHECK(last > leave + 1);
     CHECK(mrr[last] < 0.5 * expected);
     for (std::size_t s = leave; s < last; ++s)
       CHECK(mrr[s + 1] <= mrr[s] * (1 + 1e-9));

@@ -1,0 +1,87 @@
+// Removal in batches (RemovalEngine::remove_steps): the tiles of the grid run in parallel, each
+// applying the batch's steps in order; the volumes must be those of removing the steps one by
+// one, bit for bit, whatever the number of threads.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include <tbb/global_control.h>
+
+#include "fixture.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+
+// Many short random moves over the stock at a few depths, with several tools: steps overlap
+// each other and cross tile borders.
+std::vector<RemovalStep> random_steps(const std::vector<Tool>& tools, std::size_t count) {
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> xy(0, 60), dz(-2.5, 0.5), step(-3, 3);
+  std::vector<RemovalStep> steps;
+  Point3 at{30, 30, 1};
+  for (std::size_t k = 0; k < count; ++k) {
+    Point3 to{std::clamp(at.x + step(rng), -5.0, 65.0), std::clamp(at.y + step(rng), -5.0, 65.0),
+              dz(rng)};
+    if (k % 97 == 0) to = {xy(rng), xy(rng), 1}; // a jump across the stock
+    steps.push_back({&tools[k / 500 % tools.size()], at, to});
+    at = to;
+  }
+  return steps;
+}
+
+std::vector<double> one_by_one(const StockShape& stock, const GridFrame& grid,
+                               const std::vector<RemovalStep>& steps) {
+  auto engine = make_removal_engine(EngineKind::Dexel, stock, grid);
+  std::vector<double> v;
+  for (const RemovalStep& s : steps)
+    v.push_back(engine->remove_step(*s.tool, s.from, s.to));
+  return v;
+}
+
+std::vector<double> batched(const StockShape& stock, const GridFrame& grid,
+                            const std::vector<RemovalStep>& steps, std::size_t batch,
+                            double* left = nullptr) {
+  auto engine = make_removal_engine(EngineKind::Dexel, stock, grid);
+  std::vector<double> all, part;
+  for (std::size_t k = 0; k < steps.size(); k += batch) {
+    const std::vector<RemovalStep> slice(steps.begin() + std::ptrdiff_t(k),
+                                         steps.begin() + std::ptrdiff_t(std::min(k + batch, steps.size())));
+    engine->remove_steps(slice, part);
+    all.insert(all.end(), part.begin(), part.end());
+  }
+  if (left) *left = engine->material_volume_mm3();
+  return all;
+}
+
+} // namespace
+
+TEST_CASE("batched removal equals removal step by step, bit for bit, for any thread count") {
+  std::vector<Tool> tools{flat_end_mill(1, 6), ball_end_mill(2, 4), drill(3, 3, 118)};
+  const std::vector<RemovalStep> steps = random_steps(tools, 3000);
+  const Box3 box{0, 0, -3, 60, 60, 0};
+  const auto stock = make_box_stock(box, "test box");
+  const GridFrame grid = make_grid(box, 0.15); // 400 x 400 columns, 13 x 13 tiles
+  const std::vector<double> reference = one_by_one(*stock, grid, steps);
+  double total = 0;
+  for (double v : reference)
+    total += v;
+  CHECK(total > 1000); // the program removes a good deal
+
+  for (int threads : {1, 2, 4}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    for (std::size_t batch : {std::size_t(1), std::size_t(64), std::size_t(5000)}) {
+      CAPTURE(threads);
+      CAPTURE(batch);
+      double left = 0;
+      const std::vector<double> v = batched(*stock, grid, steps, batch, &left);
+      REQUIRE(v.size() == reference.size());
+      bool identical = true;
+      for (std::size_t k = 0; k < v.size(); ++k)
+        identical = identical && v[k] == reference[k]; // exact, not approximate
+      CHECK(identical);
+      CHECK(left == doctest::Approx(60 * 60 * 3 - total).epsilon(1e-9));
+    }
+  }
+}

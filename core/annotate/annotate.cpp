@@ -11,7 +11,6 @@
 #include "marker.hpp"
 #include "ncjoule/annotate.hpp"
 #include "number_format.hpp"
-#include "operations.hpp"
 #include "strip_line.hpp"
 
 namespace ncjoule {
@@ -100,7 +99,8 @@ std::string_view header_eol(const CleanLines& lines, std::size_t position) {
   return "\n";
 }
 
-std::vector<Field> block_fields(const LineSummary* summary, double end_s, const Operation* op) {
+std::vector<Field> block_fields(const LineSummary* summary, double end_s,
+                                const OperationSummary* op) {
   std::vector<Field> fields;
   const double time_s = summary ? summary->time_s : 0.0;
   const double energy_j = summary ? summary->energy_j : 0.0;
@@ -137,15 +137,6 @@ std::string block_comment(std::vector<Field> fields, std::size_t room, const Wri
   }
 }
 
-// When each line's last run ends: the cumulative time written on it.
-std::vector<double> line_end_times(const Estimate& estimate, std::size_t line_count) {
-  std::vector<double> end(line_count, 0.0);
-  for (const TimedCommand& c : estimate.timeline.commands)
-    if (c.line >= 0 && static_cast<std::size_t>(c.line) < line_count)
-      end[c.line] = std::max(end[c.line], c.start_s + c.duration_s);
-  return end;
-}
-
 } // namespace
 } // namespace annotation
 
@@ -164,9 +155,12 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   std::vector<const LineSummary*> summary(n, nullptr);
   for (const LineSummary& s : estimate.lines)
     if (s.line >= 0 && static_cast<std::size_t>(s.line) < n) summary[s.line] = &s;
-  const std::vector<double> end_s = line_end_times(estimate, n);
-  std::map<int, Operation> operations;
-  if (options.operations) operations = find_operations(lines.text, estimate);
+  // The operations, by the line their fields go on (the tool change that starts them, else
+  // their first block).
+  std::map<int, const OperationSummary*> operations;
+  if (options.operations)
+    for (const OperationSummary& op : estimate.operations)
+      if (op.line >= 0 && static_cast<std::size_t>(op.line) < n) operations.emplace(op.line, &op);
 
   std::optional<std::size_t> header_at;
   if (options.header) header_at = header_position(lines);
@@ -209,7 +203,7 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
         timed || op_start ? insertion_point(text, style.comment) : std::nullopt;
     std::string comment;
     if (at && text.size() < style.max_line_length)
-      comment = block_comment(block_fields(s, end_s[i], op_start ? &op->second : nullptr),
+      comment = block_comment(block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr),
                               style.max_line_length - text.size(), style);
     if (comment.empty()) {
       out += text;

@@ -21,7 +21,7 @@ std::string field(std::string_view key, const std::string& value) {
 Group totals(const Estimate& estimate) {
   const EnergyResult& e = estimate.energy;
   Group g{"TOTAL", {}};
-  g.fields.push_back(field("T", format_duration(estimate.timeline.total_s)));
+  g.fields.push_back(field("T", format_duration(estimate.time_s)));
   g.fields.push_back(field("E", format_si(e.energy_j, "J")));
   g.fields.push_back(field("E_KWH", format_significant(e.energy_j / 3.6e6, 4, 6)));
   g.fields.push_back(field("P_MEAN", format_si(e.mean_power_w, "W")));
@@ -54,11 +54,10 @@ Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
   if (!file.empty()) g.fields.push_back(field("PROFILE", safe_token(file, 60)));
   g.fields.push_back(field("MODEL", std::string(model_name(machine.power.model))));
   g.fields.push_back(field("DIALECT", safe_token(estimate.dialect.name, 20)));
-  g.fields.push_back(field("DIALECT_FROM",
-                           estimate.toolpath.result.dialect_origin == DialectOrigin::Given ? "given"
-                           : estimate.toolpath.result.dialect_origin == DialectOrigin::Detected
-                               ? "detected"
-                               : "default"));
+  g.fields.push_back(field("DIALECT_FROM", estimate.dialect_origin == DialectOrigin::Given ? "given"
+                                           : estimate.dialect_origin == DialectOrigin::Detected
+                                               ? "detected"
+                                               : "default"));
   g.fields.push_back(field("REMOVAL", estimate.removal ? "simulated" : "off"));
   return g;
 }

@@ -33,13 +33,21 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
                                           const TimedCommand& timed,
                                           const std::vector<OperatingSegment>& segments,
                                           double removed_mm3) {
+  return integrate(index, command, timed, segments.data(), segments.data() + segments.size(),
+                   removed_mm3);
+}
+
+CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand& command,
+                                          const TimedCommand& timed, const OperatingSegment* first,
+                                          const OperatingSegment* last, double removed_mm3) {
   CommandEnergy ce;
   ce.command = index;
   ce.line = timed.line;
   ce.duration_s = timed.duration_s;
   ce.removed_mm3 = removed_mm3;
   bool has_power = false;
-  for (const OperatingSegment& seg : segments) {
+  for (const OperatingSegment* it = first; it != last; ++it) {
+    const OperatingSegment& seg = *it;
     const double dt = seg.t1_s - seg.t0_s;
     const ComponentValues a = component_power_w(constants_, seg.start);
     const ComponentValues b = component_power_w(constants_, seg.end);
@@ -73,9 +81,8 @@ CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& comma
                                     std::vector<Diagnostic>* diagnostics) {
   const std::size_t first = segments.size();
   append_operating_segments(index, command, timed, removal, previous_rpm_, segments, diagnostics);
-  const std::vector<OperatingSegment> mine(segments.begin() + std::ptrdiff_t(first),
-                                           segments.end());
-  return integrate(index, command, timed, mine, removal ? removal->removed_mm3 : 0.0);
+  return integrate(index, command, timed, segments.data() + first,
+                   segments.data() + segments.size(), removal ? removal->removed_mm3 : 0.0);
 }
 
 EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
@@ -134,11 +141,10 @@ EnergyResult estimate_energy(const std::vector<CanonCommand>& commands, const Ti
                              const EnergyOptions& options) {
   std::vector<Diagnostic> diagnostics;
   if (removal && removal->commands.size() != timeline.commands.size()) {
-    diagnostics.push_back({Severity::Warning, "", 1, 0,
-                           "removal results do not match the timeline (" +
-                               std::to_string(removal->commands.size()) + " vs " +
-                               std::to_string(timeline.commands.size()) +
-                               " commands): removal ignored"});
+    diagnostics.push_back(
+        {Severity::Warning, "", 1, 0,
+         "removal results do not match the timeline (" + std::to_string(removal->commands.size()) +
+             " vs " + std::to_string(timeline.commands.size()) + " commands): removal ignored"});
     removal = nullptr;
   }
   EnergyIntegrator integrator(constants, options);

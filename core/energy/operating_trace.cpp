@@ -12,11 +12,6 @@ namespace {
 // Below this a displacement along an axis counts as no motion (mm).
 constexpr double kStillMm = 1e-9;
 
-bool is_move(CanonKind kind) {
-  return kind == CanonKind::Traverse || kind == CanonKind::Feed || kind == CanonKind::Arc ||
-         kind == CanonKind::Probe;
-}
-
 bool is_spindle_command(CanonKind kind) {
   return kind == CanonKind::SpindleClockwise || kind == CanonKind::SpindleCounterClockwise ||
          kind == CanonKind::SpindleSpeed || kind == CanonKind::SpindleStop;
@@ -141,8 +136,9 @@ std::vector<OperatingSegment> operating_trace(const std::vector<CanonCommand>& c
       warn(tc.line, "timed command refers to a command that does not exist");
       continue;
     }
-    append_operating_segments(i, commands[tc.command], tc, removal ? &removal->commands[i] : nullptr,
-                              previous_rpm, trace, diagnostics);
+    append_operating_segments(i, commands[tc.command], tc,
+                              removal ? &removal->commands[i] : nullptr, previous_rpm, trace,
+                              diagnostics);
   }
   return trace;
 }

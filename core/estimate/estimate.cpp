@@ -1,9 +1,11 @@
-// The pipeline: interpret, plan, remove material, integrate power, summarise per line.
-#include "ncjoule/log.hpp"
+// The pipeline: a first pass over the program for what must be known before anything is timed
+// (the tools it uses, the extent of its cuts), then the stream: interpret, plan, remove material,
+// integrate power, fold into per-line results.
 #include <chrono>
 #include <exception>
 
-#include "line_summary.hpp"
+#include "ncjoule/log.hpp"
+#include "result_fold.hpp"
 
 namespace ncjoule {
 namespace {
@@ -13,12 +15,52 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// At most this many diagnostics are kept; the rest are counted (Estimate::diagnostics_dropped).
+constexpr std::size_t kMaxDiagnostics = 500;
+
+void add_diagnostics(Estimate& e, const std::vector<Diagnostic>& more, const std::string& file) {
+  for (Diagnostic d : more) {
+    if (e.diagnostics.size() >= kMaxDiagnostics && d.severity != Severity::Error) {
+      ++e.diagnostics_dropped;
+      continue;
+    }
+    if (d.file.empty()) d.file = file;
+    e.diagnostics.push_back(std::move(d));
+  }
+}
+
+// What the first pass learns.
+struct ProgramScan {
+  ToolUsage tools;
+  StockExtent extent;
+  std::size_t commands = 0;
+  void add(const CanonCommand& c) {
+    ++commands;
+    tools.add(c);
+    extent.add(c);
+  }
+};
+
+// The tools as described by the tool table, then the program's header comments, then the job
+// file and the command line, each replacing the one before for the same number.
+std::map<int, Tool> described_tools(const SourceFile& source, const EstimateOptions& options,
+                                    std::vector<Diagnostic>& diagnostics) {
+  std::map<int, Tool> described =
+      tools_from_table(options.tool_table, diagnostics, options.tool_table_path);
+  for (auto& [number, tool] : parse_tool_comments(source, diagnostics))
+    described[number] = tool;
+  for (const auto& [number, tool] : options.tools)
+    described[number] = tool;
+  return described;
+}
+
 } // namespace
 
 Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
                           const EstimateOptions& options) {
   Estimate e;
   e.file = source.path;
+  if (options.progress) options.progress(0);
   InterpreterOptions interpreter;
   interpreter.dialect = options.dialect;
   if (!interpreter.dialect && !options.detect_dialect)
@@ -26,72 +68,79 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   interpreter.fallback_dialect = find_dialect(machine.fallback_dialect);
   interpreter.tools = options.tool_table;
 
-  // Stage times go to the log (-v): the benchmarks read them.
+  // 1. The first pass. Stage times go to the log (-v): the benchmarks read them.
   auto t = Clock::now();
-  e.toolpath = interpret(source, interpreter);
-  e.dialect = e.toolpath.result.dialect;
-  e.diagnostics = e.toolpath.result.diagnostics;
-  logger().info("interpret: {} blocks, {} commands in {:.3f} s", e.toolpath.result.blocks,
-                e.toolpath.commands.size(), seconds_since(t));
+  ProgramScan scan;
+  const InterpretResult run =
+      interpret(source, interpreter, [&scan](const CanonCommand& c) { scan.add(c); });
+  e.dialect = run.dialect;
+  e.dialect_origin = run.dialect_origin;
+  e.dialect_reason = run.dialect_reason;
+  e.blocks = run.blocks;
+  e.commands = run.commands;
+  add_diagnostics(e, run.diagnostics, source.path);
+  logger().info("scan: {} blocks, {} commands in {:.3f} s", run.blocks, scan.commands,
+                seconds_since(t));
+  if (options.progress) options.progress(0.1);
 
-  // Tools: the tool table, then the program's header comments, then the job file and the
-  // command line, each replacing the one before for the same number.
-  std::map<int, Tool> described =
-      tools_from_table(options.tool_table, e.diagnostics, options.tool_table_path);
-  for (auto& [number, tool] : parse_tool_comments(source, e.diagnostics))
-    described[number] = tool;
-  for (const auto& [number, tool] : options.tools)
-    described[number] = tool;
-  std::optional<StockSpec> stock;
+  // 2. Tools and stock.
+  std::vector<Diagnostic> found;
+  std::map<int, Tool> described = described_tools(source, options, found);
+  add_diagnostics(e, found, source.path);
+  std::unique_ptr<RemovalSimulator> removal;
   if (options.simulate_removal) {
     ToolAssignment assignment = assign_tools(
-        e.toolpath.commands, described,
-        options.default_tool ? options.default_tool : machine.default_tool, source.path);
+        scan.tools, described, options.default_tool ? options.default_tool : machine.default_tool,
+        source.path);
     e.tools = std::move(assignment.tools);
     e.unsimulated_tools = std::move(assignment.unsimulated);
-    e.diagnostics.insert(e.diagnostics.end(), assignment.diagnostics.begin(),
-                         assignment.diagnostics.end());
-    stock = options.stock ? *options.stock : StockSpec{};
-  } else {
-    e.tools = std::move(described);
-  }
-  PlanOptions plan_options;
-  if (stock && !e.tools.empty()) {
-    const double grid =
-        options.removal.grid_mm > 0 ? options.removal.grid_mm : default_grid_spacing(e.tools);
-    plan_options.max_sample_step_mm = recommended_sample_step(e.tools, grid);
-  }
-  t = Clock::now();
-  e.timeline = plan(e.toolpath.commands, machine, plan_options);
-  logger().info("plan: {} commands in {:.3f} s", e.toolpath.commands.size(), seconds_since(t));
-  for (Diagnostic d : e.timeline.diagnostics) {
-    d.file = source.path;
-    e.diagnostics.push_back(std::move(d));
-  }
-
-  if (stock) {
+    add_diagnostics(e, assignment.diagnostics, source.path);
+    std::map<int, Tool> used;
+    for (const auto& [number, _] : scan.tools.first_move)
+      if (auto it = e.tools.find(number); it != e.tools.end()) used.insert(*it);
     RemovalOptions removal_options = options.removal;
     removal_options.source_path = source.path;
     t = Clock::now();
     try {
-      e.removal =
-          simulate_removal(e.toolpath.commands, e.timeline, e.tools, *stock, removal_options);
+      removal = std::make_unique<RemovalSimulator>(options.stock ? *options.stock : StockSpec{},
+                                                   scan.extent, used, removal_options);
     } catch (const std::exception& ex) {
       e.diagnostics.push_back({Severity::Error, source.path, 0, 0,
                                std::string("material removal failed: ") + ex.what()});
       e.failed = true;
       return e;
     }
-    logger().info("removal: {:.1f} mm^3 in {:.3f} s", e.removal->removed_mm3, seconds_since(t));
-    e.diagnostics.insert(e.diagnostics.end(), e.removal->diagnostics.begin(),
-                         e.removal->diagnostics.end());
+    logger().info("stock: {} columns in {:.3f} s", removal->grid().columns(), seconds_since(t));
+  } else {
+    e.tools = std::move(described);
   }
-  e.energy = estimate_energy(e.toolpath.commands, e.timeline, e.removal ? &*e.removal : nullptr,
-                             machine.power, options.energy);
-  e.diagnostics.insert(e.diagnostics.end(), e.energy.diagnostics.begin(),
-                       e.energy.diagnostics.end());
-  e.lines =
-      summarise_lines(source, e.dialect, e.timeline, e.removal ? &*e.removal : nullptr, e.energy);
+
+  // 3. The stream.
+  PlanOptions plan_options;
+  if (removal && removal->ready()) plan_options.max_sample_step_mm = removal->sample_step_mm();
+  estimate_detail::ResultFolder folder(source, e.dialect, machine, options, removal.get(),
+                                       scan.commands, e);
+  t = Clock::now();
+  std::vector<CanonCommand> commands;
+  commands.reserve(scan.commands);
+  InterpreterOptions again = interpreter;
+  again.dialect = e.dialect; // as the first pass chose it
+  interpret(source, again, [&commands](const CanonCommand& c) { commands.push_back(c); });
+  Timeline timeline = plan(commands, machine, plan_options);
+  add_diagnostics(e, timeline.diagnostics, source.path);
+  try {
+    for (TimedCommand& tc : timeline.commands)
+      if (tc.command < commands.size()) folder.take(commands[tc.command], tc);
+    folder.finish(timeline.total_s);
+  } catch (const std::exception& ex) {
+    e.diagnostics.push_back(
+        {Severity::Error, source.path, 0, 0, std::string("material removal failed: ") + ex.what()});
+    e.failed = true;
+    return e;
+  }
+  if (e.removal) add_diagnostics(e, e.removal->diagnostics, source.path);
+  logger().info("stream: {} commands in {:.3f} s", commands.size(), seconds_since(t));
+  if (options.progress) options.progress(1);
   return e;
 }
 

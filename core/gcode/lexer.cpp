@@ -3,6 +3,7 @@
 #include <cstring>
 
 #include "block.hpp"
+#include "comment_syntax.hpp"
 
 namespace ncjoule::detail {
 namespace {
@@ -44,30 +45,6 @@ void add_warning(Block& b, int column, std::string message) {
 
 bool is_name_char(char c) {
   return is_letter(c) || is_digit(c) || c == '_';
-}
-
-// Sinumerik calls take their arguments in parentheses: "CYCLE81(10,0,2,-5)", "MSG("text")".
-// A '(' right after a name that begins with two letters opens such a list, not a comment.
-bool opens_argument_list(std::string_view line, std::size_t paren) {
-  std::size_t k = paren;
-  while (k > 0 && (line[k - 1] == ' ' || line[k - 1] == '\t'))
-    --k;
-  std::size_t start = k;
-  while (start > 0 && is_name_char(to_lower(line[start - 1])))
-    --start;
-  return k - start >= 2 && is_letter(to_lower(line[start])) && is_letter(to_lower(line[start + 1]));
-}
-
-// Length of the ( ... ) list at t[pos], including both parentheses, or 0 when not closed.
-std::size_t paren_length(std::string_view t, std::size_t pos) {
-  int depth = 0;
-  for (std::size_t i = pos; i < t.size(); ++i) {
-    if (t[i] == '(')
-      ++depth;
-    else if (t[i] == ')' && --depth == 0)
-      return i - pos + 1;
-  }
-  return 0;
 }
 
 } // namespace
@@ -172,19 +149,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     } else if (c == '*' && dialect.star_block_end) {
       break; // Heidenhain ISO: the end of the block
     } else if (c == '(' && dialect.paren_comments) {
-      std::size_t close = line.find(')', i + 1);
-      if (dialect.nested_paren_comments) {
-        int depth = 0;
-        close = std::string_view::npos;
-        for (std::size_t k = i; k < n; ++k) {
-          if (line[k] == '(')
-            ++depth;
-          else if (line[k] == ')' && --depth == 0) {
-            close = k;
-            break;
-          }
-        }
-      }
+      const std::size_t close = comment_close(line, i, dialect);
       if (close == std::string_view::npos) {
         // What the controller makes of it varies; the code before it is kept.
         add_warning(b, int(i) + 1,

@@ -21,11 +21,6 @@ namespace {
 
 using namespace kinematics_detail;
 
-bool is_move(CanonKind kind) {
-  return kind == CanonKind::Traverse || kind == CanonKind::Feed || kind == CanonKind::Arc ||
-         kind == CanonKind::Probe;
-}
-
 // How a move is timed.
 enum class MoveTiming : std::uint8_t {
   NotAMove,

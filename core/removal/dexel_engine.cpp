@@ -2,9 +2,9 @@
 // A 3-axis tool only ever removes material above its lower envelope, so a column loses the tops
 // of its intervals and never splits one: its interval list only shrinks, in place.
 #include <algorithm>
+#include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <limits>
 
 #include "engines.hpp"
 #include "swept_step.hpp"

@@ -13,11 +13,6 @@ namespace {
 // A rapid removing less than this is grazing within rounding, not a collision.
 constexpr double kCollisionMinMm3 = 1e-6;
 
-bool is_move(CanonKind k) {
-  return k == CanonKind::Traverse || k == CanonKind::Feed || k == CanonKind::Arc ||
-         k == CanonKind::Probe;
-}
-
 std::string format_box(const Box3& b) {
   char buf[160];
   std::snprintf(buf, sizeof buf, "box %.3f,%.3f,%.3f to %.3f,%.3f,%.3f mm", b.xmin, b.ymin, b.zmin,
@@ -151,8 +146,9 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   };
   const double cell_limit =
       double(options.engine == EngineKind::Voxel ? options.max_voxels : options.max_columns);
-  double spacing = options.grid_mm > 0 ? options.grid_mm
-                                       : automatic_grid_spacing(extent, tools_, options.work_columns);
+  double spacing = options.grid_mm > 0
+                       ? options.grid_mm
+                       : automatic_grid_spacing(extent, tools_, options.work_columns);
   // Far too fine a grid is refused before its frame is even made: its cell count would overflow.
   const double width = std::max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin);
   if (!(spacing > 0) || !std::isfinite(spacing) || width / spacing > 1e8) {
@@ -175,10 +171,9 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     const double power = options.engine == EngineKind::Voxel ? 1.0 / 3.0 : 0.5;
     while (cells(grid_) > cell_limit ||
            estimated_removal_memory(options.engine, grid_, spec.kind) > budget) {
-      const double over =
-          std::max(cells(grid_) / cell_limit,
-                   double(estimated_removal_memory(options.engine, grid_, spec.kind)) /
-                       double(budget));
+      const double over = std::max(
+          cells(grid_) / cell_limit,
+          double(estimated_removal_memory(options.engine, grid_, spec.kind)) / double(budget));
       spacing *= std::max(1.01, std::pow(over, power));
       grid_ = grid_at(spacing);
     }
@@ -248,10 +243,10 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     totals_.removed_mm3 += r.removed_mm3;
     if (cmd.kind == CanonKind::Traverse && r.removed_mm3 > kCollisionMinMm3) {
       r.collision = true;
-      totals_.diagnostics.push_back(
-          {Severity::Warning, options_.source_path, tc.line + 1, 0,
-           "rapid move cuts " + format_mm3(r.removed_mm3) + " mm^3 of stock with tool T" +
-               std::to_string(cmd.state.tool) + " (collision)"});
+      totals_.diagnostics.push_back({Severity::Warning, options_.source_path, tc.line + 1, 0,
+                                     "rapid move cuts " + format_mm3(r.removed_mm3) +
+                                         " mm^3 of stock with tool T" +
+                                         std::to_string(cmd.state.tool) + " (collision)"});
     }
   }
 }

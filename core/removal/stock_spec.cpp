@@ -27,10 +27,6 @@ bool parse_number(std::string_view text, double& value) {
   return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
 }
 
-bool is_cutting(CanonKind kind) {
-  return kind == CanonKind::Feed || kind == CanonKind::Arc;
-}
-
 } // namespace
 
 std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* error) {
@@ -68,7 +64,7 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* er
 }
 
 void StockExtent::add(const CanonCommand& cmd) {
-  if (!is_cutting(cmd.kind)) return;
+  if (!(cmd.kind == CanonKind::Feed || cmd.kind == CanonKind::Arc)) return;
   // A level move: travels in XY and starts and ends at one Z (lines, XY arcs).
   constexpr double kMinXyMm = 1e-6, kSameZMm = 1e-9;
   PerTool& t = tools_[cmd.state.tool];

@@ -9,14 +9,6 @@
 namespace ncjoule {
 namespace {
 
-bool is_move(CanonKind kind) {
-  return kind == CanonKind::Traverse || kind == CanonKind::Feed || kind == CanonKind::Arc ||
-         kind == CanonKind::Probe;
-}
-bool is_cut(CanonKind kind) {
-  return kind == CanonKind::Feed || kind == CanonKind::Arc || kind == CanonKind::Probe;
-}
-
 std::string describe(const Tool& tool) {
   char size[32];
   std::snprintf(size, sizeof size, "%g mm", tool.diameter_mm);
@@ -30,18 +22,26 @@ constexpr const char* kHowToDescribe =
 
 } // namespace
 
+void ToolUsage::add(const CanonCommand& c) {
+  if (!is_move(c.kind)) return;
+  first_move.emplace(c.state.tool, c.line);
+  if (is_feed_move(c.kind)) first_cut.emplace(c.state.tool, c.line);
+}
+
 ToolAssignment assign_tools(const std::vector<CanonCommand>& commands,
                             const std::map<int, Tool>& described,
                             const std::optional<Tool>& default_tool, std::string_view file) {
+  ToolUsage usage;
+  for (const CanonCommand& c : commands)
+    usage.add(c);
+  return assign_tools(usage, described, default_tool, file);
+}
+
+ToolAssignment assign_tools(const ToolUsage& usage, const std::map<int, Tool>& described,
+                            const std::optional<Tool>& default_tool, std::string_view file) {
   ToolAssignment out;
   out.tools = described;
-  // First line each tool number moves on, and first line it cuts on (0-based).
-  std::map<int, int> first_move, first_cut;
-  for (const CanonCommand& c : commands) {
-    if (!is_move(c.kind)) continue;
-    first_move.emplace(c.state.tool, c.line);
-    if (is_cut(c.kind)) first_cut.emplace(c.state.tool, c.line);
-  }
+  std::map<int, int> first_move = usage.first_move, first_cut = usage.first_cut;
   auto say = [&](Severity severity, int line, std::string message) {
     out.diagnostics.push_back({severity, std::string(file), line + 1, 0, std::move(message)});
   };

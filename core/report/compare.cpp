@@ -28,7 +28,7 @@ Json components_json(const ComponentValues& values) {
 ProgramTotals program_totals(const Estimate& e) {
   ProgramTotals t;
   t.file = e.file;
-  t.time_s = e.timeline.total_s;
+  t.time_s = e.time_s;
   t.energy_j = e.energy.energy_j;
   t.removed_mm3 = e.energy.removed_mm3;
   t.sec_j_mm3 = e.energy.sec_j_mm3;

@@ -1,74 +1,79 @@
 // The per-block results as CSV (comma separated, a header row, text quoted as RFC 4180 says when it
-// holds a comma, a quote or a line break). Columns are listed in docs/report.md.
+// holds a comma, a quote or a line break), written row by row. Columns are listed in
+// docs/report.md.
 #include <charconv>
-#include <map>
+#include <sstream>
 
 #include "ncjoule/report.hpp"
 
 namespace ncjoule {
 namespace {
 
-// Shortest text that reads back to the same double.
-std::string number(double value) {
+// Shortest text that reads back to the same number.
+template <class T> void number(std::ostream& out, T value) {
   char text[32];
   const auto result = std::to_chars(text, text + sizeof text, value);
-  return std::string(text, result.ptr);
+  out.write(text, result.ptr - text);
 }
 
-std::string quoted(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
+void quoted(std::ostream& out, std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
+    out << text;
+    return;
+  }
+  out.put('"');
   for (char ch : text) {
-    if (ch == '"') out += '"';
-    out += ch;
+    if (ch == '"') out.put('"');
+    out.put(ch);
   }
-  return out + '"';
-}
-
-// The operation each source line belongs to: the one in which the line first runs.
-std::map<int, std::string> operation_of_lines(const SourceFile& source, const Estimate& e) {
-  const std::vector<OperationSummary> ops = operations(source, e);
-  std::map<int, std::string> names;
-  std::size_t op = 0;
-  bool started = !ops.empty() && ops.front().line < 0;
-  for (const TimedCommand& c : e.timeline.commands) {
-    if (c.kind == CanonKind::ChangeTool) {
-      for (std::size_t i = 0; i < ops.size(); ++i)
-        if (ops[i].line == c.line) {
-          op = i;
-          started = true;
-        }
-    }
-    if (started && !ops.empty()) names.try_emplace(c.line, ops[op].name);
-  }
-  return names;
+  out.put('"');
 }
 
 } // namespace
 
-std::string estimate_csv(const Estimate& e, const SourceFile& source) {
-  std::string out = "line,kind,operation,start_s,time_s,length_mm,entry_speed_mm_s,"
-                    "exit_speed_mm_s,peak_speed_mm_s,commands,removed_mm3,mrr_mm3_s,"
-                    "mrr_peak_mm3_s,power_w,power_peak_w,energy_j";
+void write_estimate_csv(std::ostream& out, const Estimate& e) {
+  out << "line,kind,operation,start_s,time_s,length_mm,entry_speed_mm_s,exit_speed_mm_s,"
+         "peak_speed_mm_s,commands,removed_mm3,mrr_mm3_s,mrr_peak_mm3_s,power_w,power_peak_w,"
+         "energy_j";
   for (std::size_t i = 0; i < kPowerComponentCount; ++i)
-    out += ',' + std::string(component_name(PowerComponent(i))) + "_j";
-  out += "\n";
-  const std::map<int, std::string> op_names = operation_of_lines(source, e);
+    out << ',' << component_name(PowerComponent(i)) << "_j";
+  out << '\n';
   for (const LineSummary& b : e.lines) {
-    const auto name = op_names.find(b.line);
-    out += std::to_string(b.line + 1) + ',' + quoted(b.kind) + ',' +
-           quoted(name != op_names.end() ? name->second : std::string()) + ',' + number(b.start_s) +
-           ',' + number(b.time_s) + ',' + number(b.length_mm) + ',' + number(b.entry_speed_mm_s) +
-           ',' + number(b.exit_speed_mm_s) + ',' + number(b.peak_speed_mm_s) + ',' +
-           std::to_string(b.commands) + ',' + number(b.removed_mm3) + ',' +
-           number(b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0) + ',' + number(b.mrr_peak_mm3_s) +
-           ',' + number(b.time_s > 0 ? b.energy_j / b.time_s : 0.0) + ',' + number(b.power_peak_w) +
-           ',' + number(b.energy_j);
-    for (double v : b.components_j)
-      out += ',' + number(v);
-    out += "\n";
+    out << b.line + 1 << ',' << line_kind_name(b.kind) << ',';
+    if (b.operation > 0 && b.operation <= e.operations.size())
+      quoted(out, e.operations[b.operation - 1].name);
+    out << ',';
+    number(out, b.start_s);
+    out << ',';
+    number(out, b.time_s);
+    for (float v : {b.length_mm, b.entry_speed_mm_s, b.exit_speed_mm_s, b.peak_speed_mm_s}) {
+      out << ',';
+      number(out, v);
+    }
+    out << ',' << b.commands << ',';
+    number(out, b.removed_mm3);
+    out << ',';
+    number(out, b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0);
+    out << ',';
+    number(out, b.mrr_peak_mm3_s);
+    out << ',';
+    number(out, b.time_s > 0 ? b.energy_j / b.time_s : 0.0);
+    out << ',';
+    number(out, b.power_peak_w);
+    out << ',';
+    number(out, b.energy_j);
+    for (float v : b.components_j) {
+      out << ',';
+      number(out, v);
+    }
+    out << '\n';
   }
-  return out;
+}
+
+std::string estimate_csv(const Estimate& e) {
+  std::ostringstream out;
+  write_estimate_csv(out, e);
+  return out.str();
 }
 
 } // namespace ncjoule

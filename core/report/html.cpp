@@ -53,8 +53,7 @@ std::vector<BarSegment> component_segments(const ComponentValues& values) {
 std::string kpi_cards(const Estimate& e) {
   const EnergyResult& en = e.energy;
   std::string html = "<div class=\"kpis\">";
-  html +=
-      kpi("Time", duration_text(e.timeline.total_s), format_number(e.timeline.total_s, 1) + " s");
+  html += kpi("Time", duration_text(e.time_s), format_number(e.time_s, 1) + " s");
   html += kpi("Energy", format_number(en.energy_j / 3.6e6, 4) + " kWh",
               format_number(en.energy_j / 1000, 1) + " kJ");
   html += kpi("Removed", format_number(en.removed_mm3, 0) + " mm&sup3;",
@@ -91,8 +90,8 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
                             std::size_t index) {
   const Estimate& e = *p.estimate;
   const std::string id = "p" + std::to_string(index + 1);
-  const std::vector<OperationSummary> ops = operations(*p.source, e);
-  const ProgramSeries series = program_series(e, machine);
+  const std::vector<OperationSummary>& ops = e.operations;
+  const ProgramSeries& series = e.series;
   std::vector<ChartMarker> markers;
   for (const OperationSummary& op : ops)
     if (op.line >= 0) markers.push_back({op.start_s, op.name});
@@ -106,11 +105,11 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
   html += report_detail::svg_time_chart(
       id + "-power", "Power over time", "W",
       {{base_name(e.file), color, downsample_min_max(series.power_w, kMaxChartPoints)}}, markers,
-      e.timeline.total_s);
+      e.time_s);
   html += report_detail::svg_time_chart(
       id + "-mrr", "Material removal rate over time", "mm\u00b3/s",
       {{base_name(e.file), "#e03131", downsample_min_max(series.mrr_mm3_s, kMaxChartPoints)}},
-      markers, e.timeline.total_s);
+      markers, e.time_s);
 
   std::vector<BarRow> op_rows;
   for (const OperationSummary& op : ops)
@@ -209,8 +208,8 @@ std::string comparison_section(const std::vector<ReportProgram>& programs,
   for (std::size_t i = 0; i < programs.size(); ++i) {
     const Estimate& e = *programs[i].estimate;
     lines.push_back({base_name(e.file), report_detail::program_color(i),
-                     downsample_min_max(program_series(e, machine).power_w, kMaxChartPoints)});
-    t_end = std::max(t_end, e.timeline.total_s);
+                     downsample_min_max(e.series.power_w, kMaxChartPoints)});
+    t_end = std::max(t_end, e.time_s);
   }
   html += report_detail::svg_time_chart("comparison-power", "Power over time, all programs", "W",
                                         lines, {}, t_end);

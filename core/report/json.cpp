@@ -1,12 +1,14 @@
-// The results of an estimate as one JSON document (docs/json.md names every field).
-#include <nlohmann/json.hpp>
+// The results of an estimate as one JSON document (docs/json.md names every field), written as
+// it is made.
+#include <sstream>
 
+#include "json_writer.hpp"
 #include "ncjoule/report.hpp"
 
 namespace ncjoule {
 namespace {
 
-using Json = nlohmann::ordered_json;
+using report_detail::JsonWriter;
 
 const char* severity_name(Severity s) {
   switch (s) {
@@ -20,131 +22,179 @@ const char* severity_name(Severity s) {
   return "error";
 }
 
-Json components_json(const ComponentValues& values) {
-  Json j = Json::object();
-  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
-    j[std::string(component_name(PowerComponent(i)))] = values[i];
-  return j;
-}
-
-Json block_json(const LineSummary& b) {
-  Json j;
-  j["line"] = b.line + 1;
-  j["kind"] = b.kind;
-  j["time_s"] = b.time_s;
-  j["start_s"] = b.start_s;
-  j["length_mm"] = b.length_mm;
-  j["entry_speed_mm_s"] = b.entry_speed_mm_s;
-  j["exit_speed_mm_s"] = b.exit_speed_mm_s;
-  j["peak_speed_mm_s"] = b.peak_speed_mm_s;
-  j["commands"] = b.commands;
-  j["removed_mm3"] = b.removed_mm3;
-  j["mrr_mm3_s"] = b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0;
-  j["mrr_peak_mm3_s"] = b.mrr_peak_mm3_s;
-  j["power_w"] = b.time_s > 0 ? b.energy_j / b.time_s : 0.0;
-  j["power_peak_w"] = b.power_peak_w;
-  j["energy_j"] = b.energy_j;
-  j["components"] = components_json(b.components_j);
-  if (!b.notes.empty()) j["notes"] = b.notes;
-  return j;
-}
-
-Json operation_json(const OperationSummary& op) {
-  Json j;
-  j["name"] = op.name;
-  j["tool"] = op.tool;
-  j["line"] = op.line + 1; // 0 for what runs before the first tool change
-  j["start_s"] = op.start_s;
-  j["time_s"] = op.time_s;
-  j["removed_mm3"] = op.removed_mm3;
-  j["energy_j"] = op.energy_j;
-  j["sec_j_mm3"] = op.removed_mm3 > 0 ? op.energy_j / op.removed_mm3 : 0.0;
-  j["co2_kg"] = op.co2_kg;
-  j["cost"] = op.cost;
-  j["components"] = components_json(op.components_j);
-  return j;
-}
-
-Json diagnostic_json(const Diagnostic& d) {
-  return Json{{"file", d.file},
-              {"line", d.line},
-              {"column", d.column},
-              {"severity", severity_name(d.severity)},
-              {"message", d.message}};
-}
-
-Json estimate_document(const Estimate& e, const MachineProfile& machine) {
-  const RemovalResult* removal = e.removal ? &*e.removal : nullptr;
-  const EnergyResult& energy = e.energy;
-  const Timeline& timeline = e.timeline;
-  const std::vector<LineSummary>& blocks = e.lines;
-  const std::vector<Diagnostic>& diagnostics = e.diagnostics;
-  Json j;
-  j["file"] = e.file;
-  j["machine"] = Json{{"name", machine.name},
-                      {"file", machine.source_path},
-                      {"power_model", energy.model_description}};
-  j["dialect"] = e.dialect.name;
-  j["dialect_origin"] = e.toolpath.result.dialect_origin == DialectOrigin::Given      ? "given"
-                        : e.toolpath.result.dialect_origin == DialectOrigin::Detected ? "detected"
-                                                                                      : "default";
-  j["dialect_reason"] = e.toolpath.result.dialect_reason;
-  Json tools = Json::array();
-  for (const auto& [number, tool] : e.tools)
-    tools.push_back(Json{{"number", number},
-                         {"shape", std::string(tool_shape_name(tool.shape))},
-                         {"diameter_mm", tool.diameter_mm},
-                         {"corner_radius_mm", tool.corner_radius_mm},
-                         {"tip_angle_deg", tool.tip_angle_deg},
-                         {"description", tool.description}});
-  j["tools"] = std::move(tools);
-  j["unsimulated_tools"] = e.unsimulated_tools;
-  j["time_s"] = timeline.total_s;
-  j["removed_mm3"] = energy.removed_mm3;
-  j["stock"] = removal ? removal->stock_description : std::string("not simulated");
-  if (removal) {
-    j["removal"] = Json{{"engine", std::string(engine_name(removal->engine))},
-                        {"grid_mm", removal->grid.dx},
-                        {"columns", removal->grid.columns()},
-                        {"stock_volume_mm3", removal->stock_volume_mm3},
-                        {"memory_bytes", removal->memory_bytes}};
+const char* origin_name(DialectOrigin origin) {
+  switch (origin) {
+  case DialectOrigin::Given:
+    return "given";
+  case DialectOrigin::Detected:
+    return "detected";
+  case DialectOrigin::Default:
+    break;
   }
-  j["energy_j"] = energy.energy_j;
-  j["sec_j_mm3"] = energy.sec_j_mm3;
-  j["co2_kg"] = energy.co2_kg;
-  j["cost"] = energy.cost;
-  j["currency"] = energy.currency;
-  j["components"] = components_json(energy.components_j);
-  Json list = Json::array();
-  for (const LineSummary& b : blocks)
-    list.push_back(block_json(b));
-  j["blocks"] = std::move(list);
-  Json warnings = Json::array();
-  for (const Diagnostic& d : diagnostics)
-    warnings.push_back(diagnostic_json(d));
-  j["warnings"] = std::move(warnings);
-  return j;
+  return "default";
+}
+
+template <class Values> void write_components(JsonWriter& w, const Values& values) {
+  w.key("components");
+  w.begin_object();
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+    w.field(component_name(PowerComponent(i)), values[i]);
+  w.end_object();
+}
+
+void write_time_split(JsonWriter& w, const TimeSplit& t, bool removal_known) {
+  w.key("time_split");
+  w.begin_object();
+  w.field("rapid_s", t.rapid_s);
+  w.field("feed_s", t.feed_s);
+  w.field("cutting_s", t.cutting_s());
+  if (removal_known)
+    w.field("air_cut_s", t.air_cut_s);
+  else
+    w.key("air_cut_s").null(); // not known without removal
+  w.field("tool_change_s", t.tool_change_s);
+  w.field("dwell_s", t.dwell_s);
+  w.field("spindle_s", t.spindle_s);
+  w.field("other_s", t.other_s);
+  w.field("tool_changes", t.tool_changes);
+  w.end_object();
+}
+
+void write_block(JsonWriter& w, const LineSummary& b, const Estimate& e) {
+  w.begin_object();
+  w.field("line", b.line + 1);
+  w.field("kind", line_kind_name(b.kind));
+  if (b.operation > 0 && b.operation <= e.operations.size())
+    w.field("operation", e.operations[b.operation - 1].name);
+  w.field("time_s", b.time_s);
+  w.field("start_s", b.start_s);
+  w.field("length_mm", b.length_mm);
+  w.field("entry_speed_mm_s", b.entry_speed_mm_s);
+  w.field("exit_speed_mm_s", b.exit_speed_mm_s);
+  w.field("peak_speed_mm_s", b.peak_speed_mm_s);
+  w.field("commands", b.commands);
+  w.field("removed_mm3", b.removed_mm3);
+  w.field("mrr_mm3_s", b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0);
+  w.field("mrr_peak_mm3_s", b.mrr_peak_mm3_s);
+  w.field("power_w", b.time_s > 0 ? b.energy_j / b.time_s : 0.0);
+  w.field("power_peak_w", b.power_peak_w);
+  w.field("energy_j", b.energy_j);
+  write_components(w, b.components_j);
+  if (b.note > 0 && b.note <= e.notes.size()) {
+    w.key("notes");
+    w.begin_array();
+    w.value(e.notes[b.note - 1]);
+    w.end_array();
+  }
+  w.end_object();
+}
+
+void write_operation(JsonWriter& w, const OperationSummary& op, bool removal_known) {
+  w.begin_object();
+  w.field("name", op.name);
+  w.field("tool", op.tool);
+  w.field("line", op.line + 1); // 0 for what runs before the first operation
+  w.field("start_s", op.start_s);
+  w.field("time_s", op.time_s);
+  w.field("removed_mm3", op.removed_mm3);
+  w.field("energy_j", op.energy_j);
+  w.field("sec_j_mm3", op.removed_mm3 > 0 ? op.energy_j / op.removed_mm3 : 0.0);
+  w.field("co2_kg", op.co2_kg);
+  w.field("cost", op.cost);
+  write_components(w, op.components_j);
+  write_time_split(w, op.time, removal_known);
+  w.end_object();
 }
 
 } // namespace
 
-std::string estimate_json(const Estimate& e, const MachineProfile& machine, int indent) {
-  return estimate_document(e, machine).dump(indent);
+void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProfile& machine,
+                         int indent) {
+  const RemovalResult* removal = e.removal ? &*e.removal : nullptr;
+  const EnergyResult& energy = e.energy;
+  JsonWriter w(out, indent);
+  w.begin_object();
+  w.field("file", e.file);
+  w.key("machine");
+  w.begin_object();
+  w.field("name", machine.name);
+  w.field("file", machine.source_path);
+  w.field("power_model", energy.model_description);
+  w.end_object();
+  w.field("dialect", e.dialect.name);
+  w.field("dialect_origin", origin_name(e.dialect_origin));
+  w.field("dialect_reason", e.dialect_reason);
+  w.field("time_s", e.time_s);
+  write_time_split(w, e.time, removal != nullptr);
+  w.field("removed_mm3", energy.removed_mm3);
+  w.field("stock", removal ? removal->stock_description : std::string("not simulated"));
+  if (removal) {
+    w.key("removal");
+    w.begin_object();
+    w.field("engine", engine_name(removal->engine));
+    w.field("grid_mm", removal->grid.dx);
+    w.field("columns", removal->grid.columns());
+    w.field("stock_volume_mm3", removal->stock_volume_mm3);
+    w.field("memory_bytes", removal->memory_bytes);
+    w.end_object();
+  }
+  w.key("tools");
+  w.begin_array();
+  for (const auto& [number, tool] : e.tools) {
+    w.begin_object();
+    w.field("number", number);
+    w.field("shape", tool_shape_name(tool.shape));
+    w.field("diameter_mm", tool.diameter_mm);
+    w.field("corner_radius_mm", tool.corner_radius_mm);
+    w.field("tip_angle_deg", tool.tip_angle_deg);
+    w.field("description", tool.description);
+    w.end_object();
+  }
+  w.end_array();
+  w.key("unsimulated_tools");
+  w.begin_array();
+  for (int t : e.unsimulated_tools)
+    w.value(t);
+  w.end_array();
+  w.field("energy_j", energy.energy_j);
+  w.field("sec_j_mm3", energy.sec_j_mm3);
+  w.field("mean_power_w", energy.mean_power_w);
+  w.field("peak_power_w", energy.peak_power_w);
+  w.field("co2_kg", energy.co2_kg);
+  w.field("cost", energy.cost);
+  w.field("currency", energy.currency);
+  write_components(w, energy.components_j);
+  w.key("operations");
+  w.begin_array();
+  for (const OperationSummary& op : e.operations)
+    write_operation(w, op, removal != nullptr);
+  w.end_array();
+  w.key("blocks");
+  w.begin_array();
+  for (const LineSummary& b : e.lines)
+    write_block(w, b, e);
+  w.end_array();
+  w.key("warnings");
+  w.begin_array();
+  for (const Diagnostic& d : e.diagnostics) {
+    w.begin_object();
+    w.field("file", d.file);
+    w.field("line", d.line);
+    w.field("column", d.column);
+    w.field("severity", severity_name(d.severity));
+    w.field("message", d.message);
+    w.end_object();
+  }
+  w.end_array();
+  w.field("warnings_dropped", e.diagnostics_dropped);
+  w.end_object();
+  if (indent > 0) out.put('\n');
 }
 
-std::string estimate_json(const Estimate& e, const SourceFile& source,
-                          const MachineProfile& machine, int indent) {
-  Json j = estimate_document(e, machine);
-  Json list = Json::array();
-  for (const OperationSummary& op : operations(source, e))
-    list.push_back(operation_json(op));
-  // After the totals, before the long list of blocks.
-  Json ordered;
-  for (auto& [key, value] : j.items()) {
-    if (key == "blocks") ordered["operations"] = list;
-    ordered[key] = value;
-  }
-  return ordered.dump(indent);
+std::string estimate_json(const Estimate& e, const MachineProfile& machine, int indent) {
+  std::ostringstream out;
+  write_estimate_json(out, e, machine, indent);
+  return out.str();
 }
 
 } // namespace ncjoule

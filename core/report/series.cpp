@@ -2,28 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "ncjoule/energy.hpp"
 #include "ncjoule/report.hpp"
 
 namespace ncjoule {
-
-ProgramSeries program_series(const Estimate& e, const MachineProfile& machine) {
-  ProgramSeries s;
-  const std::vector<OperatingSegment> trace =
-      operating_trace(e.toolpath.commands, e.timeline, e.removal ? &*e.removal : nullptr, nullptr);
-  auto add = [&](double t, const OperatingPoint& p) {
-    s.power_w.t_s.push_back(t);
-    s.power_w.value.push_back(component_sum(component_power_w(machine.power, p)));
-    s.mrr_mm3_s.t_s.push_back(t);
-    s.mrr_mm3_s.value.push_back(p.mrr_mm3_s);
-  };
-  for (const OperatingSegment& seg : trace) {
-    if (!(seg.t1_s > seg.t0_s)) continue; // instants draw nothing
-    add(seg.t0_s, seg.start);
-    add(seg.t1_s, seg.end);
-  }
-  return s;
-}
 
 Series downsample_min_max(const Series& in, std::size_t max_points) {
   max_points = std::max<std::size_t>(max_points, 4);

@@ -232,7 +232,7 @@ void ncjoule_result_destroy(ncjoule_result* result) {
 int ncjoule_result_totals(const ncjoule_result* result, ncjoule_totals* totals) {
   if (!result || !totals) return fail("no result or no totals"), -1;
   const ncjoule::EnergyResult& e = result->estimate.energy;
-  totals->time_s = result->estimate.timeline.total_s;
+  totals->time_s = result->estimate.time_s;
   totals->energy_j = e.energy_j;
   totals->removed_mm3 = e.removed_mm3;
   totals->sec_j_mm3 = e.sec_j_mm3;
@@ -252,7 +252,7 @@ int ncjoule_result_block(const ncjoule_result* result, size_t index, ncjoule_blo
     return fail("block index out of range"), -1;
   const ncjoule::LineSummary& s = result->estimate.lines[index];
   block->line = s.line + 1;
-  block->kind = s.kind.c_str();
+  block->kind = ncjoule::line_kind_name(s.kind);
   block->start_s = s.start_s;
   block->time_s = s.time_s;
   block->removed_mm3 = s.removed_mm3;

@@ -147,7 +147,9 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
   // The trace depends only on the machine's kinematics; the constants fitted so far are the
   // starting point of the fit.
   machine.power = calibration.constants;
-  const Estimate e = estimate_program(*source, machine, options);
+  EstimateOptions traced = options;
+  traced.keep_trace = true; // the fit compares the log with the whole operating trace
+  const Estimate e = estimate_program(*source, machine, traced);
   print_diagnostics(e.diagnostics);
   bool program_errors = e.failed;
   for (const Diagnostic& d : e.diagnostics)
@@ -159,10 +161,7 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
                  o.program.c_str());
     return kInputError;
   }
-  std::vector<Diagnostic> trace_diagnostics;
-  const auto trace = operating_trace(e.toolpath.commands, e.timeline,
-                                     e.removal ? &*e.removal : nullptr, &trace_diagnostics);
-  print_diagnostics(trace_diagnostics);
+  const std::vector<OperatingSegment>& trace = e.trace;
 
   LogFitOptions fit_options;
   fit_options.max_offset_s = o.max_offset_s;
@@ -173,7 +172,7 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
     return kInputError;
   }
   std::printf("%s: %zu samples over %.1f s; %s runs %.1f s on %s\n", o.log.c_str(), log->t_s.size(),
-              log->t_s.back() - log->t_s.front(), o.program.c_str(), e.timeline.total_s,
+              log->t_s.back() - log->t_s.front(), o.program.c_str(), e.time_s,
               machine.name.c_str());
   std::printf("time offset: the program starts %.3f s into the log\n", fit.offset_s);
   for (const std::string& note : fit.notes)

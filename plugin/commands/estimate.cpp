@@ -51,52 +51,29 @@ std::string clock_text(double seconds) {
   return text;
 }
 
-// Where the program's time goes, by what the machine does.
-struct TimeBreakdown {
-  double rapid_s = 0, cutting_s = 0, tool_change_s = 0, other_s = 0;
-  int tool_changes = 0;
-};
-
-TimeBreakdown break_down(const Timeline& timeline) {
-  TimeBreakdown b;
-  for (const TimedCommand& c : timeline.commands) {
-    switch (c.kind) {
-    case CanonKind::Traverse:
-      b.rapid_s += c.duration_s;
-      break;
-    case CanonKind::Feed:
-    case CanonKind::Arc:
-    case CanonKind::Probe:
-      b.cutting_s += c.duration_s;
-      break;
-    case CanonKind::ChangeTool:
-      b.tool_change_s += c.duration_s;
-      ++b.tool_changes;
-      break;
-    default:
-      b.other_s += c.duration_s;
-      break;
-    }
-  }
-  return b;
-}
-
 void print_summary(const SourceFile& source, const MachineProfile& machine, const Estimate& e) {
-  const Timeline& timeline = e.timeline;
   const EnergyResult& energy = e.energy;
-  const std::size_t block_count = e.lines.size();
-  const TimeBreakdown b = break_down(timeline);
+  const TimeSplit& t = e.time;
   std::printf("%s on %s\n", source.path.c_str(), machine.name.c_str());
-  const InterpretResult& r = e.toolpath.result;
   std::printf("  dialect     %s\n",
-              describe_dialect_choice({r.dialect, r.dialect_origin, r.dialect_reason}).c_str());
+              describe_dialect_choice({e.dialect, e.dialect_origin, e.dialect_reason}).c_str());
   std::printf("  model       %s\n", energy.model_description.c_str());
-  std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(timeline.total_s).c_str(),
-              timeline.total_s, block_count);
-  std::printf("  rapids      %s\n", clock_text(b.rapid_s).c_str());
-  std::printf("  feed moves  %s\n", clock_text(b.cutting_s).c_str());
-  std::printf("  tool change %s (%d)\n", clock_text(b.tool_change_s).c_str(), b.tool_changes);
-  std::printf("  other       %s (dwell, spindle ramps)\n", clock_text(b.other_s).c_str());
+  std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(e.time_s).c_str(), e.time_s,
+              e.lines.size());
+  std::printf("  rapids      %s\n", clock_text(t.rapid_s).c_str());
+  if (e.removal) {
+    std::printf("  cutting     %s\n", clock_text(t.cutting_s()).c_str());
+    std::printf("  air cutting %s (feed moves that remove nothing)\n",
+                clock_text(t.air_cut_s).c_str());
+  } else {
+    std::printf("  feed moves  %s (removal not simulated: cutting and air cutting not told "
+                "apart)\n",
+                clock_text(t.feed_s).c_str());
+  }
+  std::printf("  tool change %s (%d)\n", clock_text(t.tool_change_s).c_str(), t.tool_changes);
+  std::printf("  dwell       %s\n", clock_text(t.dwell_s).c_str());
+  std::printf("  spindle     %s (speed changes)\n", clock_text(t.spindle_s).c_str());
+  if (t.other_s > 0) std::printf("  other       %s\n", clock_text(t.other_s).c_str());
   std::printf("  energy      %.4f kWh (%.1f kJ), mean power %.0f W, peak %.0f W\n",
               energy.energy_j / 3.6e6, energy.energy_j / 1000, energy.mean_power_w,
               energy.peak_power_w);
@@ -112,22 +89,23 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
   }
 }
 
-// Time, volume and energy per operation (from one tool change to the next).
-void print_operations(const std::vector<OperationSummary>& ops, const EnergyResult& energy) {
+// Time, air cutting, volume and energy per operation.
+void print_operations(const Estimate& e) {
+  const std::vector<OperationSummary>& ops = e.operations;
   if (ops.empty()) return;
   std::size_t width = 9;
   for (const OperationSummary& op : ops)
-    width = std::max(width, std::min<std::size_t>(op.name.size(), 32));
+    width = std::max(width, op.name.size());
   std::printf("  by operation:\n");
-  std::printf("    %-*s %4s %5s %14s %10s %10s %7s\n", static_cast<int>(width), "operation", "tool",
-              "line", "time", "mm^3", "kJ", "share");
+  std::printf("    %-*s %4s %5s %14s %14s %10s %10s %7s\n", static_cast<int>(width), "operation",
+              "tool", "line", "time", "air cutting", "mm^3", "kJ", "share");
   for (const OperationSummary& op : ops) {
-    std::printf("    %-*s %4s %5s %14s %10.0f %10.1f %6.1f%%\n", static_cast<int>(width),
-                op.name.substr(0, 32).c_str(),
-                op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
-                op.line >= 0 ? std::to_string(op.line + 1).c_str() : "-",
-                clock_text(op.time_s).c_str(), op.removed_mm3, op.energy_j / 1000,
-                energy.energy_j > 0 ? 100 * op.energy_j / energy.energy_j : 0.0);
+    std::printf(
+        "    %-*s %4s %5s %14s %14s %10.0f %10.1f %6.1f%%\n", static_cast<int>(width),
+        op.name.c_str(), op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
+        op.line >= 0 ? std::to_string(op.line + 1).c_str() : "-", clock_text(op.time_s).c_str(),
+        e.removal ? clock_text(op.time.air_cut_s).c_str() : "-", op.removed_mm3, op.energy_j / 1000,
+        e.energy.energy_j > 0 ? 100 * op.energy_j / e.energy.energy_j : 0.0);
   }
 }
 
@@ -154,9 +132,9 @@ int run_estimate(const EstimateCliOptions& o) {
     return kInputError;
   }
   if (o.json) {
-    std::cout << estimate_json(e, *source, machine) << '\n';
+    write_estimate_json(std::cout, e, machine);
   } else if (o.csv) {
-    std::cout << estimate_csv(e, *source);
+    write_estimate_csv(std::cout, e);
   } else {
     print_summary(*source, machine, e);
     if (e.removal)
@@ -165,7 +143,7 @@ int run_estimate(const EstimateCliOptions& o) {
           e.removal->stock_description.c_str(), std::string(engine_name(e.removal->engine)).c_str(),
           e.removal->grid.dx, e.removal->grid.columns(),
           double(e.removal->memory_bytes) / (1 << 20));
-    print_operations(operations(*source, e), e.energy);
+    print_operations(e);
     if (!e.unsimulated_tools.empty()) {
       std::printf("  not simulated:");
       for (int t : e.unsimulated_tools)

@@ -98,12 +98,14 @@ TEST_CASE("calibrate --log fits a shifted, noisy log of the bracket program back
   std::string error;
   options.stock = parse_stock_spec(kStock, &error);
   REQUIRE(options.stock);
+  options.keep_trace = true;
   std::ifstream in(kProgram, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const Estimate e = estimate_program(make_source(kProgram, text), machine, options);
   REQUIRE_FALSE(e.failed);
   REQUIRE(e.removal);
-  const auto trace = operating_trace(e.toolpath.commands, e.timeline, &*e.removal);
+  const std::vector<OperatingSegment>& trace = e.trace;
+  REQUIRE(!trace.empty());
 
   // A 10 Hz meter started 8.37 s before the program and stopped 15 s after it; Gaussian noise
   // of 12 W, and a spike where the spindle starts (an outlier for the robust loss).
@@ -118,7 +120,7 @@ TEST_CASE("calibrate --log fits a shifted, noisy log of the bracket program back
     std::ofstream log(log_path);
     log << "# synthesized: bracket-linuxcnc.ngc on generic-3axis with changed constants\n";
     log << "time_s,power_w\n";
-    const int samples = static_cast<int>((e.timeline.total_s + offset + 15) * 10);
+    const int samples = static_cast<int>((e.time_s + offset + 15) * 10);
     for (int i = 0; i <= samples; ++i) {
       const double t = i * 0.1;
       double p = component_sum(component_power_w(truth, operating_point_at(trace, t - offset)));

@@ -28,16 +28,11 @@ inline std::vector<std::string> canon(const Toolpath& path) {
   return lines;
 }
 
-inline bool is_move(CanonKind k) {
-  return k == CanonKind::Traverse || k == CanonKind::Feed || k == CanonKind::Arc ||
-         k == CanonKind::Probe || k == CanonKind::Dwell;
-}
-
 // Only moves and dwells, as rs274 prints them.
 inline std::vector<std::string> moves(const Toolpath& path) {
   std::vector<std::string> lines;
   for (const CanonCommand& c : path.commands)
-    if (is_move(c.kind)) lines.push_back(format_canon(c));
+    if (is_move(c.kind) || c.kind == CanonKind::Dwell) lines.push_back(format_canon(c));
   return lines;
 }
 

@@ -47,7 +47,8 @@ std::vector<double> batched(const StockShape& stock, const GridFrame& grid,
   std::vector<double> all, part;
   for (std::size_t k = 0; k < steps.size(); k += batch) {
     const std::vector<RemovalStep> slice(steps.begin() + std::ptrdiff_t(k),
-                                         steps.begin() + std::ptrdiff_t(std::min(k + batch, steps.size())));
+                                         steps.begin() +
+                                             std::ptrdiff_t(std::min(k + batch, steps.size())));
     engine->remove_steps(slice, part);
     all.insert(all.end(), part.begin(), part.end());
   }

@@ -228,8 +228,10 @@ public:
                     const CommandRemoval* removal, std::vector<OperatingSegment>& segments,
                     std::vector<Diagnostic>* diagnostics = nullptr);
   // One command whose segments are already made (integrate_energy's form).
-  CommandEnergy integrate(std::size_t index, const CanonCommand& command,
-                          const TimedCommand& timed, const std::vector<OperatingSegment>& segments,
+  CommandEnergy integrate(std::size_t index, const CanonCommand& command, const TimedCommand& timed,
+                          const std::vector<OperatingSegment>& segments, double removed_mm3);
+  CommandEnergy integrate(std::size_t index, const CanonCommand& command, const TimedCommand& timed,
+                          const OperatingSegment* first, const OperatingSegment* last,
                           double removed_mm3);
   // The totals (no per-command list); `program_duration_s` > 0 replaces the sum of durations.
   EnergyResult totals(double program_duration_s = 0) const;

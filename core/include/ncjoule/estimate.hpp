@@ -1,8 +1,16 @@
 // ncjoule: the whole pipeline behind one call. Interprets a program, plans it on a machine,
 // simulates material removal and integrates power, and folds the results into one summary per
-// source line: what the command line, the annotator, the reports and the C API all show.
+// source line, per operation and per program: what the command line, the annotator, the reports
+// and the C API all show.
+//
+// The pipeline streams: commands flow through the planner, removal and energy a batch at a time
+// and are folded into small per-line results as they come. Memory is bounded by the stock model
+// and those results (about 100 bytes a source line), never by the program's commands.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,6 +39,12 @@ struct EstimateOptions {
   std::map<int, Tool> tools;
   // The tool of moves that select and describe none; empty: the machine profile's.
   std::optional<Tool> default_tool;
+  // Called now and then with the fraction done (0 to 1) on the calling thread, e.g. for a
+  // progress bar; may be empty.
+  std::function<void(double fraction)> progress;
+  // Keep the operating trace of the whole program in Estimate::trace (calibration needs it;
+  // memory grows with the program).
+  bool keep_trace = false;
 };
 
 // A job file (TOML) says what a program is cut from and with:
@@ -51,37 +65,133 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
 // The same, reading the file.
 std::optional<JobFile> read_job_file(const std::string& path, std::vector<Diagnostic>& diagnostics);
 
-// Everything the results say about one source line, over every time it ran.
+// What a source line does, by its most telling command: moves first, then what takes time.
+enum class LineKind : std::uint8_t {
+  Setting, // feed rate, units, plane, offsets, path control, ... (or nothing that runs)
+  Rapid,
+  Feed,
+  Arc,
+  Probe,
+  Dwell,
+  SelectTool,
+  ToolChange,
+  Spindle,
+  Coolant,
+  ProgramStop,
+  OptionalStop,
+  ProgramEnd,
+  Message,
+  Comment,
+};
+// "setting", "rapid", "feed", "arc", "probe", "dwell", "select_tool", "tool_change", "spindle",
+// "coolant", "program_stop", "optional_stop", "program_end", "message", "comment"
+const char* line_kind_name(LineKind kind);
+LineKind line_kind(CanonKind kind);
+// "rapid", "feed", ... for a command (line_kind_name of its line kind).
+std::string kind_name(CanonKind kind);
+
+// Everything the results say about one source line, over every time it ran. Kept small (about
+// 100 bytes): a million-line program holds a million of these and nothing else of its size.
 struct LineSummary {
-  int line = 0;                 // 0-based
-  std::string kind = "setting"; // what the line does, by its most telling command (kind_name)
-  int commands = 0;             // canonical commands the line produced, over all its runs
-  double start_s = 0;           // when it first ran
-  double time_s = 0;            // over all its runs
-  double length_mm = 0;
-  double entry_speed_mm_s = 0; // at its first move
-  double exit_speed_mm_s = 0;  // at its last move
-  double peak_speed_mm_s = 0;
-  std::vector<std::string> notes;
+  std::int32_t line = 0; // 0-based
+  LineKind kind = LineKind::Setting;
   bool has_move = false;
+  std::uint16_t note = 0;      // 1-based index into Estimate::notes (the first note), 0: none
+  std::uint16_t operation = 0; // 1-based index into Estimate::operations where it first ran
+  std::uint32_t commands = 0;  // canonical commands the line produced, over all its runs
+  double start_s = 0;          // when it first ran
+  double end_s = 0;            // when its last run ended
+  double time_s = 0;           // over all its runs
   double removed_mm3 = 0;
-  double mrr_peak_mm3_s = 0;
   double energy_j = 0;
-  double power_peak_w = 0;
+  float length_mm = 0;
+  float entry_speed_mm_s = 0; // at its first move
+  float exit_speed_mm_s = 0;  // at its last move
+  float peak_speed_mm_s = 0;
+  float mrr_peak_mm3_s = 0;
+  float power_peak_w = 0;
+  std::array<float, kPowerComponentCount> components_j{}; // add up to energy_j (to float)
+};
+
+// Where a program's time goes, by what the machine does. Air cutting is feed motion that removes
+// nothing (known only when removal is simulated): the first time an energy-minded programmer
+// wants to cut.
+struct TimeSplit {
+  double rapid_s = 0;
+  double feed_s = 0;    // all feed moves (G1, G2/G3, probes, canned-cycle feeds)
+  double air_cut_s = 0; // the part of feed_s that removes nothing
+  double tool_change_s = 0;
+  double dwell_s = 0;   // G4 and the dwells of canned cycles
+  double spindle_s = 0; // spindle speed-ups and slow-downs
+  double other_s = 0;   // anything else that takes time
+  int tool_changes = 0;
+  double cutting_s() const { return feed_s - air_cut_s; }
+  double total_s() const {
+    return rapid_s + feed_s + tool_change_s + dwell_s + spindle_s + other_s;
+  }
+  void add(CanonKind kind, double duration_s, bool removes_material, bool removal_known);
+};
+
+// One operation: what runs from the post's operation comment or tool change to the next.
+struct OperationSummary {
+  // The comment a CAM post writes for the operation (see find_operation_name), else "T" and the
+  // tool number. What runs before the first operation is "before first operation"; a program
+  // with no operation start is one operation named "program".
+  std::string name;
+  int tool = 0;       // tool in the spindle at its start (0: none)
+  int line = -1;      // 0-based line where it starts (tool change or comment; -1: program start)
+  double start_s = 0; // when it first starts
+  double time_s = 0;  // over every run of it (a tool change in a subprogram called twice)
+  double energy_j = 0;
+  double removed_mm3 = 0;
+  double co2_kg = 0; // the program's factors applied to this operation's energy
+  double cost = 0;
   ComponentValues components_j{};
+  TimeSplit time;
+};
+
+// Power and removal rate over time, reduced as they come to at most a few thousand points (each
+// time bucket keeps its lowest and highest value), so peaks and dips survive.
+struct Series {
+  std::vector<double> t_s;
+  std::vector<double> value;
+};
+struct ProgramSeries {
+  Series power_w;
+  Series mrr_mm3_s;
+};
+
+// The toolpath reduced to a few thousand points for drawing: a point is kept where the path
+// turns or the power changes.
+struct PathPoint {
+  float x = 0, y = 0, z = 0; // mm, program coordinates
+  float power_w = 0;
+  float mrr_mm3_s = 0;
+  std::int32_t line = 0; // 0-based source line
+  bool rapid = false;
 };
 
 struct Estimate {
   std::string file;
   Dialect dialect;
-  Toolpath toolpath;
-  Timeline timeline;
+  DialectOrigin dialect_origin = DialectOrigin::Given;
+  std::string dialect_reason;
+  std::size_t blocks = 0;   // blocks the interpreter executed
+  std::size_t commands = 0; // canonical commands they made
+  double time_s = 0;        // the program's time
+  TimeSplit time;
   std::map<int, Tool> tools;            // by the number moves carry; 0: moves with none selected
   std::vector<int> unsimulated_tools;   // tools moves use that nothing describes (no removal)
-  std::optional<RemovalResult> removal; // empty when removal was not simulated
-  EnergyResult energy;
-  std::vector<LineSummary> lines;      // one per source line that holds code, in file order
+  std::optional<RemovalResult> removal; // totals, stock and grid; empty when not simulated
+  EnergyResult energy;                  // totals and components (no per-command list)
+  std::vector<OperationSummary> operations;
+  std::vector<LineSummary> lines; // one per source line that holds code, in file order
+  std::vector<std::string> notes; // what LineSummary::note refers to
+  ProgramSeries series;
+  std::vector<PathPoint> path;
+  std::vector<OperatingSegment> trace; // with EstimateOptions::keep_trace only
   std::vector<Diagnostic> diagnostics; // interpreter, planner, removal and energy, in order
+  std::size_t diagnostics_dropped = 0; // beyond the cap on diagnostics
   bool failed = false;                 // an error made the numbers meaningless (see diagnostics)
 };
 
@@ -91,8 +201,5 @@ struct Estimate {
 // approximation.
 Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
                           const EstimateOptions& options = {});
-
-// "rapid", "feed", "arc", "probe", "dwell", "tool_change", "spindle", "coolant", ...
-std::string kind_name(CanonKind kind);
 
 } // namespace ncjoule

@@ -49,6 +49,21 @@ struct SourceFile {
 // Splits text into lines; never fails.
 SourceFile make_source(std::string path, std::string text);
 
+// The comments of one source line as a dialect reads them ("( )" and ";" as Dialect says), each
+// trimmed, with the 1-based column of its opening character, and whether the line holds
+// anything else than comments, blanks and a '%' tape mark. Every stage that reads comments
+// (tool descriptions, operation names, annotation) reads them through this.
+struct LineComment {
+  std::string_view text;
+  int column = 0;
+};
+struct LineComments {
+  std::vector<LineComment> comments;
+  bool has_code = false;
+};
+struct Dialect;
+LineComments line_comments(std::string_view line, const Dialect& dialect);
+
 // ---------------------------------------------------------------------------------------------
 // Diagnostics
 // ---------------------------------------------------------------------------------------------
@@ -216,6 +231,9 @@ struct CanonCommand {
   std::string text;
   ModalState state; // state while this command runs
 };
+
+bool is_move(CanonKind kind);      // Traverse, Feed, Arc, Probe
+bool is_feed_move(CanonKind kind); // Feed, Arc, Probe: the moves that cut
 
 // Where the interpreter hands its commands: one call per command, in order.
 using CanonSink = std::function<void(const CanonCommand&)>;

@@ -53,11 +53,20 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source,
 //  - a number nothing describes is in `unsimulated`: its moves are timed but remove nothing, and
 //    a warning names the tool and the ways to describe it.
 // Rapids need no tool: tool 0 used only by rapids gives no diagnostic.
+// The tools a program's moves use, gathered one command at a time: the first line (0-based)
+// each tool number moves on, and the first it cuts on (feed, arc or probe).
+struct ToolUsage {
+  std::map<int, int> first_move, first_cut;
+  void add(const CanonCommand& command);
+};
+
 struct ToolAssignment {
   std::map<int, Tool> tools;    // by number, 0 included when a fallback was found
   std::vector<int> unsimulated; // numbers moves use that no tool stands for
   std::vector<Diagnostic> diagnostics;
 };
+ToolAssignment assign_tools(const ToolUsage& usage, const std::map<int, Tool>& described,
+                            const std::optional<Tool>& default_tool, std::string_view file = {});
 ToolAssignment assign_tools(const std::vector<CanonCommand>& commands,
                             const std::map<int, Tool>& described,
                             const std::optional<Tool>& default_tool, std::string_view file = {});

@@ -1,0 +1,257 @@
+#include "operations.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace ncjoule::estimate_detail {
+namespace {
+
+// How far from a tool change its name is looked for, so that a file without comments costs no
+// more than a few lines per tool change.
+constexpr int kNameSearchLines = 40;
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    c = char(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+std::string_view trim(std::string_view s) {
+  const std::size_t a = s.find_first_not_of(" \t");
+  if (a == std::string_view::npos) return {};
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+bool starts_with(const std::string& s, std::string_view prefix) {
+  return s.compare(0, prefix.size(), prefix) == 0;
+}
+
+// A comment that describes a tool: a tool list entry ("T1 D=6. CR=0. - ...", "T3 : 3.0",
+// "T1 = .5 ENDMILL", "T1 | 1/2 FLAT ENDMILL | ..."), Mastercam's "TOOL - 1 DIA. ...", FreeCAD's
+// tool controller "TC: 6mm Endmill".
+bool describes_tool(const std::string& l) {
+  if (l.size() > 1 && l[0] == 't' && std::isdigit(static_cast<unsigned char>(l[1]))) {
+    std::size_t i = 1;
+    while (i < l.size() && std::isdigit(static_cast<unsigned char>(l[i])))
+      ++i;
+    while (i < l.size() && l[i] == ' ')
+      ++i;
+    if (i == l.size() || l[i] == ':' || l[i] == '=' || l[i] == '|' || l[i] == '-' ||
+        l.find("d=") != std::string::npos)
+      return true;
+  }
+  return starts_with(l, "tool") || starts_with(l, "tc:") || starts_with(l, "tc :");
+}
+
+// Commented-out code: every word a letter and a number ("G00 Z3", "M08", "X10. Y20.").
+bool is_code(std::string_view text) {
+  bool any = false;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && text[i] == ' ')
+      ++i;
+    if (i >= text.size()) break;
+    if (!std::isalpha(static_cast<unsigned char>(text[i]))) return false;
+    ++i;
+    const std::size_t digits = i;
+    if (i < text.size() && (text[i] == '-' || text[i] == '+')) ++i;
+    while (i < text.size() && (std::isdigit(static_cast<unsigned char>(text[i])) || text[i] == '.'))
+      ++i;
+    if (i == digits || (i < text.size() && text[i] != ' ')) return false;
+    any = true;
+  }
+  return any;
+}
+
+// Notes posts write between operations, which name none.
+bool is_note(const std::string& l) {
+  static const char* const kNotes[] = {"finish operation",
+                                       "end operation",
+                                       "end of operation",
+                                       "machine units",
+                                       "coolant",
+                                       "begin preamble",
+                                       "begin postamble",
+                                       "preamble",
+                                       "postamble",
+                                       "output time",
+                                       "exported by",
+                                       "post processor",
+                                       "tool change",
+                                       "program end",
+                                       "end of program",
+                                       "end program",
+                                       "retract",
+                                       "rapid",
+                                       "spindle",
+                                       "return to",
+                                       "safe",
+                                       "home",
+                                       "stop",
+                                       "pause",
+                                       "units",
+                                       "wcs",
+                                       "work offset",
+                                       "date",
+                                       "time:",
+                                       "material",
+                                       "machine:",
+                                       "stock",
+                                       "cam file",
+                                       "project file",
+                                       "file:"};
+  for (const char* note : kNotes)
+    if (starts_with(l, note)) return true;
+  return false;
+}
+
+} // namespace
+
+std::string operation_name_in(std::string_view comment) {
+  std::string_view text = trim(comment);
+  if (text.empty() || text.size() > 80) return {};
+  std::string l = lower(text);
+  for (const char* prefix :
+       {"begin operation:", "begin operation", "start operation:", "operation:", "op:"}) {
+    if (starts_with(l, prefix)) {
+      text = trim(text.substr(std::string_view(prefix).size()));
+      l = lower(text);
+      break;
+    }
+  }
+  if (text.empty() || describes_tool(l) || is_code(text) || is_note(l)) return {};
+  return std::string(text);
+}
+
+OperationTracker::OperationTracker(const SourceFile& source, const Dialect& dialect)
+    : source_(source), dialect_(dialect) {
+  for (std::size_t i = 0; i < source.lines.size(); ++i) {
+    const LineComments c = line_comments(source.line_text(i), dialect);
+    if (c.has_code || c.comments.empty()) continue;
+    if (!operation_name_in(c.comments.front().text).empty()) comment_lines_.push_back(int(i));
+  }
+  Op lead;
+  lead.summary.line = -1;
+  ops_.push_back(lead);
+}
+
+std::size_t OperationTracker::start(int line, int comment_line, const CanonCommand& command,
+                                    double start_s) {
+  const int key = comment_line >= 0 ? comment_line : line;
+  const auto [it, inserted] = by_line_.try_emplace(key, ops_.size());
+  if (inserted) {
+    Op op;
+    op.summary.line = line;
+    op.summary.start_s = start_s;
+    op.summary.tool = command.kind == CanonKind::ChangeTool ? int(std::lround(command.value))
+                                                            : command.state.tool;
+    op.comment_line = comment_line;
+    ops_.push_back(op);
+  }
+  return it->second;
+}
+
+std::size_t OperationTracker::take(const CanonCommand& command, const TimedCommand& timed) {
+  const int line = command.line;
+  if (command.kind == CanonKind::ChangeTool) {
+    Op& now = ops_[current_];
+    if (now.comment_line >= 0 && !now.cut && current_ != 0) {
+      // The post's comment came first ("(FACE1)", "M9", "G28 G91 Z0", "T1 M6"): one operation.
+      now.summary.tool = int(std::lround(command.value));
+      now.summary.line = line;
+    } else {
+      current_ = start(line, -1, command, timed.start_s);
+    }
+  } else if (line > last_line_ && ops_[current_].cut) {
+    // An operation comment between the last line that ran and this one starts the next
+    // operation, once this one has cut.
+    const auto it = std::upper_bound(comment_lines_.begin(), comment_lines_.end(), last_line_);
+    if (it != comment_lines_.end() && *it < line)
+      current_ = start(line, *it, command, timed.start_s);
+  }
+  if (current_ == 0 && ops_[0].summary.tool == 0) ops_[0].summary.tool = command.state.tool;
+  last_line_ = line;
+  return current_;
+}
+
+void OperationTracker::add(std::size_t op, CanonKind kind, double duration_s, double energy_j,
+                           const ComponentValues& components_j, double removed_mm3,
+                           bool removal_known) {
+  Op& o = ops_[op];
+  o.summary.time_s += duration_s;
+  o.summary.energy_j += energy_j;
+  o.summary.removed_mm3 += removed_mm3;
+  for (std::size_t c = 0; c < kPowerComponentCount; ++c)
+    o.summary.components_j[c] += components_j[c];
+  o.summary.time.add(kind, duration_s, removed_mm3 > 0, removal_known);
+  if (is_feed_move(kind)) o.cut = true;
+}
+
+std::string OperationTracker::name_of(const Op& op, const std::function<bool(int)>& stops) const {
+  auto comment_at = [&](int line) -> std::optional<std::string_view> {
+    const LineComments c = line_comments(source_.line_text(std::size_t(line)), dialect_);
+    if (c.has_code || c.comments.empty()) return std::nullopt;
+    return c.comments.front().text;
+  };
+  if (op.comment_line >= 0)
+    if (auto text = comment_at(op.comment_line)) return operation_name_in(*text);
+  const int at = op.summary.line;
+  const int n = int(source_.lines.size());
+  if (at < 0 || at >= n) return "T" + std::to_string(op.summary.tool);
+  // Above the tool change, past lines that do not cut (M5, M9, G28, T2, blank lines), not into
+  // the header's tool list.
+  for (int i = at - 1; i >= std::max(0, at - kNameSearchLines); --i) {
+    if (stops(i)) break;
+    const auto text = comment_at(i);
+    if (!text) continue;
+    if (describes_tool(lower(trim(*text)))) break;
+    if (std::string name = operation_name_in(*text); !name.empty()) return name;
+  }
+  // On the tool-change line.
+  for (const LineComment& c : line_comments(source_.line_text(std::size_t(at)), dialect_).comments)
+    if (std::string name = operation_name_in(c.text); !name.empty()) return name;
+  // Below it (some Haas and Fanuc posts), before the first cut.
+  for (int i = at + 1; i <= std::min(n - 1, at + kNameSearchLines); ++i) {
+    if (stops(i)) break;
+    if (const auto text = comment_at(i))
+      if (std::string name = operation_name_in(*text); !name.empty()) return name;
+  }
+  return "T" + std::to_string(op.summary.tool);
+}
+
+std::vector<OperationSummary>
+OperationTracker::finish(const std::function<bool(int)>& cuts_on, const EnergyResult& totals,
+                         std::vector<std::uint16_t>& index_map) const {
+  std::vector<int> starts;
+  for (const Op& op : ops_) {
+    if (op.summary.line >= 0) starts.push_back(op.summary.line);
+    if (op.comment_line >= 0) starts.push_back(op.comment_line);
+  }
+  std::sort(starts.begin(), starts.end());
+  auto stops = [&](int line) {
+    return cuts_on(line) || std::binary_search(starts.begin(), starts.end(), line);
+  };
+  std::vector<OperationSummary> out;
+  index_map.assign(ops_.size(), 0);
+  const OperationSummary& lead = ops_[0].summary;
+  const bool lead_empty = lead.time_s == 0 && lead.energy_j == 0 && lead.removed_mm3 == 0;
+  for (std::size_t i = 0; i < ops_.size(); ++i) {
+    OperationSummary op = ops_[i].summary;
+    if (i == 0) {
+      if (ops_.size() > 1 && lead_empty) continue;
+      op.name = ops_.size() == 1 ? "program" : "before first operation";
+    } else {
+      op.name = name_of(ops_[i], stops);
+    }
+    const double share = totals.energy_j > 0 ? op.energy_j / totals.energy_j : 0.0;
+    op.co2_kg = totals.co2_kg * share;
+    op.cost = totals.cost * share;
+    out.push_back(std::move(op));
+    index_map[i] = std::uint16_t(std::min<std::size_t>(out.size(), 65535));
+  }
+  return out;
+}
+
+} // namespace ncjoule::estimate_detail

@@ -1,0 +1,210 @@
+#include "result_fold.hpp"
+
+#include <algorithm>
+
+namespace ncjoule::estimate_detail {
+namespace {
+
+// A batch goes to removal when it holds this many commands or path samples: big enough for the
+// removal tiles to run in parallel, small enough to stay in cache.
+constexpr std::size_t kBatchCommands = 2048;
+constexpr std::size_t kBatchSamples = 16384;
+
+// Whether a kind says more about a line than another: moves first, then what takes time.
+int kind_rank(LineKind kind) {
+  switch (kind) {
+  case LineKind::Arc:
+  case LineKind::Feed:
+  case LineKind::Probe:
+    return 5;
+  case LineKind::Rapid:
+    return 4;
+  case LineKind::ToolChange:
+  case LineKind::Dwell:
+    return 3;
+  case LineKind::ProgramStop:
+  case LineKind::OptionalStop:
+  case LineKind::ProgramEnd:
+  case LineKind::Spindle:
+    return 2;
+  case LineKind::Comment:
+  case LineKind::Message:
+    return 0;
+  default:
+    return 1;
+  }
+}
+
+} // namespace
+
+ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
+                           const MachineProfile& machine, const EstimateOptions& options,
+                           RemovalSimulator* removal, std::size_t expected_commands, Estimate& out)
+    : source_(source), dialect_(dialect), machine_(machine), options_(options), removal_(removal),
+      out_(out), expected_commands_(expected_commands), lines_(source.lines.size()),
+      energy_(machine.power, options.energy), operations_(source, dialect) {}
+
+void ResultFolder::take(const CanonCommand& command, const TimedCommand& timed) {
+  batch_commands_.push_back(command);
+  batch_timed_.push_back(timed);
+  batch_samples_ += timed.samples.size();
+  if (batch_commands_.size() >= kBatchCommands || batch_samples_ >= kBatchSamples) run_batch();
+}
+
+void ResultFolder::run_batch() {
+  const std::size_t n = batch_commands_.size();
+  if (n == 0) return;
+  const bool removal_known = removal_ && removal_->ready();
+  if (removal_known) {
+    moves_.clear();
+    for (std::size_t k = 0; k < n; ++k)
+      moves_.push_back({next_index_ + k, &batch_commands_[k], &batch_timed_[k]});
+    removal_->remove(moves_, removed_);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    const CanonCommand& command = batch_commands_[k];
+    const TimedCommand& timed = batch_timed_[k];
+    const CommandRemoval* removed = removal_known ? &removed_[k] : nullptr;
+    segments_.clear();
+    const CommandEnergy energy =
+        energy_.add(next_index_ + k, command, timed, removed, segments_, &out_.diagnostics);
+    const std::size_t operation = operations_.take(command, timed);
+    fold(command, timed, removed, energy, operation);
+    follow_path(command, timed, segments_);
+    if (options_.keep_trace)
+      out_.trace.insert(out_.trace.end(), segments_.begin(), segments_.end());
+  }
+  next_index_ += n;
+  batch_commands_.clear();
+  batch_timed_.clear();
+  batch_samples_ = 0;
+  if (options_.progress && expected_commands_ > 0 && next_index_ - last_progress_ >= 4096) {
+    last_progress_ = next_index_;
+    options_.progress(0.1 + 0.9 * std::min(1.0, double(next_index_) / double(expected_commands_)));
+  }
+}
+
+void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
+                        const CommandRemoval* removed, const CommandEnergy& energy,
+                        std::size_t operation) {
+  const double removed_mm3 = removed ? removed->removed_mm3 : 0.0;
+  const bool removal_known = removed != nullptr;
+  time_.add(command.kind, timed.duration_s, removed_mm3 > 0, removal_known);
+  operations_.add(operation, command.kind, timed.duration_s, energy.energy_j, energy.components_j,
+                  removed_mm3, removal_known);
+  if (timed.line < 0 || std::size_t(timed.line) >= lines_.size()) return;
+  LineSummary& b = lines_[std::size_t(timed.line)];
+  b.removed_mm3 += removed_mm3;
+  if (removed) b.mrr_peak_mm3_s = std::max(b.mrr_peak_mm3_s, float(removed->mrr_peak_mm3_s));
+  b.energy_j += energy.energy_j;
+  b.power_peak_w = std::max(b.power_peak_w, float(energy.peak_power_w));
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+    b.components_j[i] += float(energy.components_j[i]);
+  const LineKind kind = line_kind(command.kind);
+  if (b.commands == 0 || kind_rank(kind) > kind_rank(b.kind)) b.kind = kind;
+  if (b.commands++ == 0) b.start_s = timed.start_s;
+  b.time_s += timed.duration_s;
+  b.end_s = std::max(b.end_s, timed.start_s + timed.duration_s);
+  b.length_mm += float(timed.length_mm);
+  b.peak_speed_mm_s = std::max(b.peak_speed_mm_s, float(timed.peak_speed_mm_s));
+  if (is_move(command.kind)) {
+    if (!b.has_move) b.entry_speed_mm_s = float(timed.entry_speed_mm_s);
+    b.exit_speed_mm_s = float(timed.exit_speed_mm_s);
+    b.has_move = true;
+  }
+  if (!timed.note.empty() && b.note == 0) b.note = note_index(timed.note);
+  if (b.operation == 0) b.operation = std::uint16_t(std::min<std::size_t>(operation + 1, 65535));
+}
+
+// The power and MRR series, and the path: one point per end of every segment.
+void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& timed,
+                               const std::vector<OperatingSegment>& segments) {
+  const bool move = is_move(command.kind);
+  for (const OperatingSegment& seg : segments) {
+    if (!(seg.t1_s > seg.t0_s)) continue; // instants draw nothing
+    const double p0 = component_sum(component_power_w(machine_.power, seg.start));
+    const double p1 = component_sum(component_power_w(machine_.power, seg.end));
+    power_.add(seg.t0_s, p0);
+    power_.add(seg.t1_s, p1);
+    mrr_.add(seg.t0_s, seg.start.mrr_mm3_s);
+    mrr_.add(seg.t1_s, seg.end.mrr_mm3_s);
+  }
+  if (!move) return;
+  // Path points at the move's samples (or its ends), with the power of the step that ends there.
+  const std::vector<MotionSample>& samples = timed.samples;
+  std::size_t s = 0;
+  auto power_at = [&](double t) {
+    while (s + 1 < segments.size() && segments[s].t1_s < t)
+      ++s;
+    if (segments.empty()) return std::pair{0.0, 0.0};
+    const OperatingPoint& p = segments[s].end;
+    return std::pair{component_sum(component_power_w(machine_.power, p)), p.mrr_mm3_s};
+  };
+  auto add = [&](const Pose& at, double t) {
+    const auto [power, mrr] = power_at(t);
+    path_.add({float(at.x), float(at.y), float(at.z), float(power), float(mrr), timed.line,
+               command.kind == CanonKind::Traverse});
+  };
+  if (samples.size() >= 2) {
+    for (const MotionSample& m : samples)
+      add(m.position, m.t_s);
+  } else {
+    add(command.start, timed.start_s);
+    add(command.end, timed.start_s + timed.duration_s);
+  }
+}
+
+std::uint16_t ResultFolder::note_index(const std::string& note) {
+  const auto it = notes_.find(note);
+  if (it != notes_.end()) return it->second;
+  if (out_.notes.size() >= 65535) return 0;
+  out_.notes.push_back(note);
+  const std::uint16_t index = std::uint16_t(out_.notes.size());
+  notes_.emplace(note, index);
+  return index;
+}
+
+void ResultFolder::finish(double total_s) {
+  run_batch();
+  out_.time_s = total_s;
+  out_.time = time_;
+  out_.energy = energy_.totals(total_s);
+  if (removal_) {
+    out_.removal = removal_->summary();
+    out_.energy.removed_mm3 = out_.removal->removed_mm3;
+    out_.energy.sec_j_mm3 =
+        out_.energy.removed_mm3 > 0 ? out_.energy.energy_j / out_.energy.removed_mm3 : 0.0;
+  }
+  out_.series.power_w = power_.result();
+  out_.series.mrr_mm3_s = mrr_.result();
+  out_.path = path_.result();
+
+  // Operations: names look no further than the lines that cut.
+  std::vector<std::uint16_t> index_map;
+  out_.operations = operations_.finish(
+      [this](int line) {
+        if (line < 0 || std::size_t(line) >= lines_.size()) return false;
+        const LineKind k = lines_[std::size_t(line)].kind;
+        return lines_[std::size_t(line)].commands > 0 &&
+               (k == LineKind::Feed || k == LineKind::Arc || k == LineKind::Probe);
+      },
+      out_.energy, index_map);
+
+  // Lines of comments only are left out; lines with code are kept even when they take no time
+  // (G90, G21), so that every block of the program has its entry.
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < lines_.size(); ++i) {
+    LineSummary& b = lines_[i];
+    const bool acts = b.commands > 0 && kind_rank(b.kind) > 0;
+    if (!acts && !line_comments(source_.line_text(i), dialect_).has_code) continue;
+    b.line = std::int32_t(i);
+    if (b.operation > 0 && b.operation <= index_map.size())
+      b.operation = index_map[b.operation - 1];
+    lines_[kept++] = b;
+  }
+  lines_.resize(kept);
+  lines_.shrink_to_fit();
+  out_.lines = std::move(lines_);
+}
+
+} // namespace ncjoule::estimate_detail

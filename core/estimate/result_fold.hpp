@@ -1,0 +1,68 @@
+// Internal: the end of the pipeline. Timed commands come in, in the order they run; they are
+// gathered in small batches for material removal (removed a batch at a time, in parallel), then
+// their energy is integrated and everything is folded into the results that are kept: one
+// summary per source line, the operations, the time split, the power series and the reduced
+// toolpath. Nothing program-sized is kept but the per-line summaries.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ncjoule/estimate.hpp"
+#include "operations.hpp"
+#include "series_reducer.hpp"
+
+namespace ncjoule::estimate_detail {
+
+class ResultFolder {
+public:
+  // `removal` may be null (removal not simulated); `expected_commands` (from the first pass)
+  // scales the progress reports.
+  ResultFolder(const SourceFile& source, const Dialect& dialect, const MachineProfile& machine,
+               const EstimateOptions& options, RemovalSimulator* removal,
+               std::size_t expected_commands, Estimate& out);
+
+  void take(const CanonCommand& command, const TimedCommand& timed);
+  // Folds what is left and fills the estimate's results; `total_s` is the program's time.
+  void finish(double total_s);
+
+private:
+  void run_batch();
+  void fold(const CanonCommand& command, const TimedCommand& timed, const CommandRemoval* removed,
+            const CommandEnergy& energy, std::size_t operation);
+  void follow_path(const CanonCommand& command, const TimedCommand& timed,
+                   const std::vector<OperatingSegment>& segments);
+  std::uint16_t note_index(const std::string& note);
+
+  const SourceFile& source_;
+  const Dialect& dialect_;
+  const MachineProfile& machine_;
+  const EstimateOptions& options_;
+  RemovalSimulator* removal_;
+  Estimate& out_;
+  std::size_t expected_commands_;
+
+  // The batch waiting for removal.
+  std::vector<CanonCommand> batch_commands_;
+  std::vector<TimedCommand> batch_timed_;
+  std::size_t batch_samples_ = 0;
+  std::size_t next_index_ = 0; // timeline index of the next command
+  std::size_t last_progress_ = 0;
+
+  // What is kept.
+  std::vector<LineSummary> lines_; // one per source line while running
+  EnergyIntegrator energy_;
+  OperationTracker operations_;
+  TimeSplit time_;
+  SeriesReducer power_, mrr_;
+  PathReducer path_;
+  std::map<std::string, std::uint16_t> notes_;
+
+  // Scratch, reused batch after batch.
+  std::vector<TimedMove> moves_;
+  std::vector<CommandRemoval> removed_;
+  std::vector<OperatingSegment> segments_;
+};
+
+} // namespace ncjoule::estimate_detail

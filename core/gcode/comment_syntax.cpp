@@ -1,0 +1,103 @@
+// Where comments begin and end (comment_syntax.hpp), and the comments of a source line as every
+// later stage reads them (line_comments in gcode.hpp).
+#include "comment_syntax.hpp"
+
+#include <cctype>
+
+namespace ncjoule::detail {
+namespace {
+
+bool is_name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+bool is_letter(char c) {
+  return std::isalpha(static_cast<unsigned char>(c)) != 0;
+}
+
+} // namespace
+
+std::string_view trimmed(std::string_view s) {
+  const std::size_t first = s.find_first_not_of(" \t\r\n");
+  if (first == std::string_view::npos) return {};
+  const std::size_t last = s.find_last_not_of(" \t\r\n");
+  return s.substr(first, last - first + 1);
+}
+
+bool opens_argument_list(std::string_view line, std::size_t paren) {
+  std::size_t k = paren;
+  while (k > 0 && (line[k - 1] == ' ' || line[k - 1] == '\t'))
+    --k;
+  std::size_t start = k;
+  while (start > 0 && is_name_char(line[start - 1]))
+    --start;
+  return k - start >= 2 && is_letter(line[start]) && is_letter(line[start + 1]);
+}
+
+std::size_t paren_length(std::string_view line, std::size_t pos) {
+  int depth = 0;
+  for (std::size_t i = pos; i < line.size(); ++i) {
+    if (line[i] == '(')
+      ++depth;
+    else if (line[i] == ')' && --depth == 0)
+      return i - pos + 1;
+  }
+  return 0;
+}
+
+std::size_t comment_close(std::string_view line, std::size_t open, const Dialect& dialect) {
+  if (!dialect.nested_paren_comments) return line.find(')', open + 1);
+  int depth = 0;
+  for (std::size_t k = open; k < line.size(); ++k) {
+    if (line[k] == '(')
+      ++depth;
+    else if (line[k] == ')' && --depth == 0)
+      return k;
+  }
+  return std::string_view::npos;
+}
+
+} // namespace ncjoule::detail
+
+namespace ncjoule {
+
+LineComments line_comments(std::string_view line, const Dialect& dialect) {
+  LineComments out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    const char c = line[i];
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '%') {
+      ++i;
+    } else if (c == '(' && dialect.paren_argument_lists && detail::opens_argument_list(line, i)) {
+      out.has_code = true;
+      const std::size_t len = detail::paren_length(line, i);
+      i = len ? i + len : line.size();
+    } else if (c == '*' && dialect.star_block_end) {
+      break;
+    } else if (c == '(' && dialect.paren_comments) {
+      const std::size_t close = detail::comment_close(line, i, dialect);
+      const std::size_t end = close == std::string_view::npos ? line.size() : close;
+      out.comments.push_back({detail::trimmed(line.substr(i + 1, end - i - 1)), int(i) + 1});
+      i = end + 1;
+    } else if (c == ';') {
+      // A comment to the end of the line, or the Fanuc family's end of block.
+      if (dialect.semicolon_comments)
+        out.comments.push_back({detail::trimmed(line.substr(i + 1)), int(i) + 1});
+      break;
+    } else {
+      out.has_code = true;
+      ++i;
+    }
+  }
+  return out;
+}
+
+bool is_move(CanonKind kind) {
+  return kind == CanonKind::Traverse || kind == CanonKind::Feed || kind == CanonKind::Arc ||
+         kind == CanonKind::Probe;
+}
+
+bool is_feed_move(CanonKind kind) {
+  return kind == CanonKind::Feed || kind == CanonKind::Arc || kind == CanonKind::Probe;
+}
+
+} // namespace ncjoule

@@ -1,0 +1,152 @@
+// Operations, found once in the pipeline: split at tool changes and at the post's operation
+// comments, named after the comment the post wrote (above, on or below the tool change), never
+// after a tool list entry or commented-out code.
+#include <doctest/doctest.h>
+
+#include "ncjoule/estimate.hpp"
+#include "ncjoule/profile.hpp"
+
+using namespace ncjoule;
+
+namespace {
+
+const MachineProfile& machine() {
+  static const MachineProfile m =
+      load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
+  return m;
+}
+
+Estimate run(const std::string& text, bool removal = false) {
+  EstimateOptions options;
+  options.simulate_removal = removal;
+  options.stock = parse_stock_spec("box:-10,-10,-5,60,30,0");
+  return estimate_program(make_source("ops.ngc", text), machine(), options);
+}
+
+std::vector<std::string> names(const Estimate& e) {
+  std::vector<std::string> out;
+  for (const OperationSummary& op : e.operations)
+    out.push_back(op.name);
+  return out;
+}
+
+} // namespace
+
+TEST_CASE("an operation per tool change, named by the comment above it") {
+  const Estimate e = run("G21 G90\n"
+                         "G0 X0 Y0 Z5\n" // before the first tool change: rapids only
+                         "(Face1)\n"
+                         "M5 (spindle off)\n"
+                         "G28 G91 Z0\n" // a retract does not stop the look up
+                         "G90\n"
+                         "T1 M6\n"
+                         "S1000 M3\n"
+                         "G1 Z-1 F100\n"
+                         "G1 X10\n"
+                         "(G00 Z3)\n" // commented-out code is no name
+                         "M9\n"
+                         "T2 M6 (Drill, 4 holes)\n"
+                         "G1 X20\n"
+                         "M30\n");
+  REQUIRE(names(e) ==
+          std::vector<std::string>{"before first operation", "Face1", "Drill, 4 holes"});
+  CHECK(e.operations[1].tool == 1);
+  CHECK(e.operations[1].line == 6);
+  CHECK(e.operations[2].tool == 2);
+  double time = 0, energy = 0;
+  for (const OperationSummary& op : e.operations)
+    time += op.time_s, energy += op.energy_j;
+  CHECK(time == doctest::Approx(e.time_s));
+  CHECK(energy == doctest::Approx(e.energy.energy_j));
+  // Every block knows its operation (CSV, JSON).
+  for (const LineSummary& b : e.lines)
+    if (b.line >= 8 && b.line <= 9) CHECK(b.operation == 2);
+}
+
+TEST_CASE("two operations with one tool split at the post's operation comment") {
+  const Estimate e = run("G21 G90\n"
+                         "(T1 D=6. CR=0. - ZMIN=-2. - FLAT END MILL)\n"
+                         "(2D CONTOUR1)\n"
+                         "T1 M6\n"
+                         "S8000 M3\n"
+                         "G0 X0 Y0 Z5\n"
+                         "G1 Z-1 F300\n"
+                         "G1 X20\n"
+                         "G0 Z5\n"
+                         "(2D POCKET2)\n"
+                         "G0 X5 Y5\n"
+                         "G1 Z-2 F300\n"
+                         "G1 X15\n"
+                         "M30\n");
+  REQUIRE(names(e) == std::vector<std::string>{"2D CONTOUR1", "2D POCKET2"});
+  CHECK(e.operations[1].tool == 1);
+  CHECK(e.operations[1].line == 10); // its first block
+}
+
+TEST_CASE("FreeCAD's begin/finish operation comments: the name, not the note") {
+  const Estimate e = run("G21\n"
+                         "(begin operation: TC: 6mm Endmill)\n"
+                         "(TC: 6mm Endmill)\n"
+                         "M6 T1\n"
+                         "M3 S8000\n"
+                         "(finish operation: TC: 6mm Endmill)\n"
+                         "(begin operation: Facing)\n"
+                         "(Coolant On:Flood)\n"
+                         "G0 X0 Y0 Z5\n"
+                         "G1 Z-0.5 F300\n"
+                         "G1 X20\n"
+                         "(finish operation: Facing)\n"
+                         "(begin operation: Pocket)\n"
+                         "(Coolant On:Flood)\n"
+                         "G1 Y10\n"
+                         "M2\n");
+  CHECK(names(e) == std::vector<std::string>{"Facing", "Pocket"});
+}
+
+TEST_CASE("a name below the tool change; the header's tool list is never a name") {
+  const Estimate e = run("(T1 D=20. CR=0. - ZMIN=-1. - FLAT END MILL)\n"
+                         "G90 G94 G17 G21\n"
+                         "T1 M6\n"
+                         "S5500 M3\n"
+                         "(FACE1)\n"
+                         "G1 X2 F100\n"
+                         "M5\n"
+                         "T2 M6\n"
+                         "G1 X3\n"
+                         "M30\n");
+  REQUIRE(names(e) == std::vector<std::string>{"FACE1", "T2"});
+}
+
+TEST_CASE("a program without operations is one, named program") {
+  const Estimate e = run("G21 G1 X10 F100\nG1 Y10\nM2\n");
+  REQUIRE(names(e) == std::vector<std::string>{"program"});
+  CHECK(e.operations[0].time_s == doctest::Approx(e.time_s));
+}
+
+TEST_CASE("the time split: rapids, cutting, air cutting, tool changes, dwells add up") {
+  const Estimate e = run("G21 G90\n"
+                         "(T1 D=6. CR=0. - ZMIN=-2. - FLAT END MILL)\n"
+                         "T1 M6\n"
+                         "S8000 M3\n"
+                         "G0 X-8 Y5 Z5\n"
+                         "G1 Z-1 F600\n"
+                         "G1 X-6\n" // in the air: the stock starts at X-10... inside
+                         "G1 X20\n" // cuts
+                         "G0 Z5\n"
+                         "G0 X0 Y100\n"
+                         "G1 Z-1\n" // beyond the stock: air
+                         "G4 P1\n"
+                         "M30\n",
+                         true);
+  const TimeSplit& t = e.time;
+  CHECK(t.total_s() == doctest::Approx(e.time_s));
+  CHECK(t.tool_changes == 1);
+  CHECK(t.dwell_s == doctest::Approx(1.0));
+  CHECK(t.air_cut_s > 0);
+  CHECK(t.cutting_s() > 0);
+  CHECK(t.air_cut_s < t.feed_s);
+  double air = 0;
+  for (const OperationSummary& op : e.operations)
+    air += op.time.air_cut_s;
+  CHECK(air == doctest::Approx(t.air_cut_s));
+}

@@ -26,7 +26,9 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
   ProgressBar progress("estimating", sources.size());
   for (std::size_t i = 0; i < sources.size(); ++i) {
     progress.begin(i, sources[i].path);
-    Estimate e = estimate_program(sources[i], machine, *options);
+    EstimateOptions with_progress = *options;
+    with_progress.progress = progress.callback();
+    Estimate e = estimate_program(sources[i], machine, with_progress);
     programs.push_back({std::move(sources[i]), std::move(e)});
   }
   progress.finish();

@@ -1,5 +1,6 @@
 #include "progress.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <unistd.h>
@@ -21,7 +22,8 @@ bool stderr_is_terminal() {
 ProgressBar::ProgressBar(std::string what, std::size_t total)
     : what_(std::move(what)), total_(total), start_(std::chrono::steady_clock::now()) {
   const char* setting = std::getenv("NCJOULE_PROGRESS");
-  enabled_ = stderr_is_terminal() && !(setting && std::string(setting) == "0");
+  lines_ = setting && std::string(setting) == "lines";
+  enabled_ = !lines_ && stderr_is_terminal() && !(setting && std::string(setting) == "0");
   if (const char* delay = std::getenv("NCJOULE_PROGRESS_DELAY_MS"))
     delay_ = std::chrono::milliseconds(std::atol(delay));
   if (enabled_) thread_ = std::thread([this] { run(); });
@@ -35,6 +37,22 @@ void ProgressBar::begin(std::size_t index, std::string name) {
   std::lock_guard lock(mutex_);
   index_ = index;
   name_ = std::move(name);
+  fraction_ = 0;
+}
+
+void ProgressBar::set_fraction(double fraction) {
+  std::lock_guard lock(mutex_);
+  fraction_ = std::min(1.0, std::max(0.0, fraction));
+  if (!lines_) return;
+  const int percent = int(100 * done());
+  if (percent == last_percent_) return;
+  last_percent_ = percent;
+  std::fprintf(stderr, "PROGRESS %d\n", percent);
+  std::fflush(stderr);
+}
+
+double ProgressBar::done() const {
+  return total_ > 0 ? (double(index_) + fraction_) / double(total_) : 0.0;
 }
 
 void ProgressBar::finish() {
@@ -47,22 +65,22 @@ void ProgressBar::finish() {
   if (thread_.joinable()) thread_.join();
 }
 
-// "estimating [#########---------------] 2/5 part.ngc  3.4 s"; one item: a block that sweeps
-// back and forth, since the pipeline does not say how far it has got inside a program.
+// "estimating [#########---------------]  37% 2/5 part.ngc  3.4 s, about 6 s left".
 std::string ProgressBar::line(double elapsed_s) const {
+  const double done_fraction = done();
   std::string bar(kBarWidth, '-');
-  if (total_ > 1) {
-    const std::size_t filled = kBarWidth * index_ / total_;
-    bar.replace(0, filled, filled, '#');
+  const std::size_t filled = std::size_t(kBarWidth * done_fraction);
+  bar.replace(0, filled, filled, '#');
+  char tail[96];
+  if (done_fraction > 0.02) {
+    const double left = elapsed_s * (1 - done_fraction) / done_fraction;
+    std::snprintf(tail, sizeof tail, "  %.1f s, about %.0f s left", elapsed_s, left);
   } else {
-    const int span = kBarWidth - 6;
-    const int step = static_cast<int>(elapsed_s * 10) % (2 * span);
-    const int at = step < span ? step : 2 * span - step;
-    bar.replace(static_cast<std::size_t>(at), 6, 6, '#');
+    std::snprintf(tail, sizeof tail, "  %.1f s", elapsed_s);
   }
-  char tail[64];
-  std::snprintf(tail, sizeof tail, "  %.1f s", elapsed_s);
-  std::string text = what_ + " [" + bar + "] ";
+  char percent[16];
+  std::snprintf(percent, sizeof percent, "%3d%% ", int(100 * done_fraction));
+  std::string text = what_ + " [" + bar + "] " + percent;
   if (total_ > 1) text += std::to_string(index_ + 1) + "/" + std::to_string(total_) + " ";
   std::string name = name_;
   if (name.size() > 40) name = "..." + name.substr(name.size() - 37);

@@ -71,6 +71,13 @@ void ncjoule_context_set_removal(ncjoule_context* context, int enabled);
  * whatever the profile says. Returns 0, or -1 for an unknown name. */
 int ncjoule_context_set_dialect(ncjoule_context* context, const char* dialect);
 
+/* Progress of the estimates that follow: `callback(fraction, user)` is called now and then, on the
+ * calling thread, with the fraction done (0 to 1) of the program being estimated or annotated.
+ * NULL for none. */
+typedef void (*ncjoule_progress_callback)(double fraction, void* user);
+void ncjoule_context_set_progress(ncjoule_context* context, ncjoule_progress_callback callback,
+                                  void* user);
+
 /* Tools. Moves cut with the tool their program selects, described (later sources replacing
  * earlier ones for the same number) by a LinuxCNC tool table, the program's CAM header comments,
  * a job file, and the tools added here; moves with no tool selected use the only tool described,

@@ -141,6 +141,16 @@ int ncjoule_context_set_dialect(ncjoule_context* context, const char* dialect) {
   return 0;
 }
 
+void ncjoule_context_set_progress(ncjoule_context* context, ncjoule_progress_callback callback,
+                                  void* user) {
+  if (!context) return;
+  if (!callback) {
+    context->options.progress = nullptr;
+    return;
+  }
+  context->options.progress = [callback, user](double fraction) { callback(fraction, user); };
+}
+
 int ncjoule_context_add_tool(ncjoule_context* context, const char* tool) {
   if (!context || !tool) return fail("no context or no tool"), -1;
   std::string error;

@@ -18,6 +18,7 @@
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "output_file.hpp"
+#include "progress.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -45,7 +46,12 @@ int run_annotate(const AnnotateCliOptions& o) {
 
   // The program as it was before any earlier annotation: what is estimated and written back.
   const SourceFile program = make_source(input->path, strip(input->text));
-  const Estimate e = estimate_program(program, machine, *options);
+  ProgressBar progress("estimating", 1);
+  progress.begin(0, program.path);
+  EstimateOptions with_progress = *options;
+  with_progress.progress = progress.callback();
+  const Estimate e = estimate_program(program, machine, with_progress);
+  progress.finish();
   print_diagnostics(e.diagnostics);
   if (e.failed) {
     std::cerr << "ncjoule: " << program.path

@@ -122,7 +122,9 @@ int run_estimate(const EstimateCliOptions& o) {
 
   ProgressBar progress("estimating", 1);
   progress.begin(0, source->path);
-  const Estimate e = estimate_program(*source, machine, *options);
+  EstimateOptions with_progress = *options;
+  with_progress.progress = progress.callback();
+  const Estimate e = estimate_program(*source, machine, with_progress);
   progress.finish();
   if (e.failed) {
     print_diagnostics(e.diagnostics);

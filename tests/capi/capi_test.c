@@ -18,6 +18,17 @@ static int passed = 0, failed = 0;
     }                                                                                              \
   } while (0)
 
+/* Progress reports: how many, and the last fraction. */
+static int progress_calls = 0;
+static double progress_last = -1;
+static int progress_ordered = 1;
+static void on_progress(double fraction, void* user) {
+  (void)user;
+  if (fraction < progress_last) progress_ordered = 0;
+  progress_last = fraction;
+  ++progress_calls;
+}
+
 /* The JSON text without white space outside strings, so that tests can look for "key":value. */
 static const char* compact(const char* json) {
   static char out[1 << 20];
@@ -115,6 +126,14 @@ int main(void) {
       ncjoule_free(annotated);
     }
   }
+
+  /* Progress: reported in order, ending at 1. */
+  ncjoule_context_set_progress(ctx, on_progress, NULL);
+  r = ncjoule_estimate_file(ctx, sample);
+  CHECK(r != NULL && progress_calls >= 2 && progress_last == 1.0 && progress_ordered,
+        "progress reported in order up to 1");
+  if (r) ncjoule_result_destroy(r);
+  ncjoule_context_set_progress(ctx, NULL, NULL);
 
   /* A string without tool definitions: estimated, T3 named in a warning and not simulated. */
   const char* program = "G21 G90\nT3 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X50\nM30\n";

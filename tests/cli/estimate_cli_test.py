@@ -92,5 +92,13 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run("estimate", os.path.join(tmp, "missing.ngc"), "--machine", ZHOU)
     check(r.returncode == 2 and "missing.ngc" in r.stderr, "unreadable input: exit 2, named")
 
+# Progress for other programs: NCJOULE_PROGRESS=lines gives "PROGRESS n" lines, in order, to 100.
+env = dict(os.environ, NCJOULE_PROGRESS="lines")
+r = subprocess.run([NCJOULE, "estimate", SAMPLE, "--machine", ZHOU, "--json"], capture_output=True,
+                   text=True, env=env)
+percents = [int(l.split()[1]) for l in r.stderr.splitlines() if l.startswith("PROGRESS ")]
+check(r.returncode == 0 and len(percents) >= 3 and percents == sorted(percents)
+      and percents[-1] == 100 and percents[0] == 0, f"progress lines in order to 100 ({percents})")
+
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

@@ -9,7 +9,7 @@ packages=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   linuxcnc-uspace               # rs274, the reference G-code interpreter used by the tests
   clang libclang-rt-14-dev      # libFuzzer for scripts/fuzz.sh
-  clang-format python3 bc       # bc: arithmetic in the bench/ scripts
+  clang-format python3 bc time  # bc: arithmetic in the bench/ scripts; time: peak memory
   freecad-python3               # freecadcmd: scripts/make_freecad_samples.py (FreeCAD's posts)
   chromium                      # headless browser: the HTML report's screenshot test
   nodejs                        # node: runs the Fusion 360 post hook under test (tests/hooks)

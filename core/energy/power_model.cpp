@@ -66,10 +66,18 @@ PowerFeatures power_features(PowerModel model, const OperatingPoint& op) {
   return f;
 }
 
+// model_parameters() of each model, made once: power is evaluated millions of times.
+static const std::vector<PowerParameter>& parameters_of(PowerModel model) {
+  static const std::vector<PowerParameter> lists[] = {model_parameters(PowerModel::Combined),
+                                                      model_parameters(PowerModel::Pavanaskar),
+                                                      model_parameters(PowerModel::Zhou)};
+  return lists[static_cast<int>(model)];
+}
+
 ComponentValues component_power_w(const PowerConstants& constants, const OperatingPoint& point) {
   ComponentValues power{};
   const PowerFeatures f = power_features(constants.model, point);
-  for (PowerParameter p : model_parameters(constants.model)) {
+  for (PowerParameter p : parameters_of(constants.model)) {
     const double x = f.linear[index(p)];
     if (x == 0.0) continue;
     power[static_cast<std::size_t>(parameter_info(p).component)] += x * get_parameter(constants, p);

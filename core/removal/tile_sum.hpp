@@ -65,10 +65,12 @@ inline FootprintRange footprint_range(const GridFrame& grid, const SweptStep& st
 }
 
 // Visits the footprint's columns in tile (ti, tj), row by row (visit_column as below); with
-// `skip`, the columns are only counted as visited.
+// `skip` (a tile with no material above the tool), nothing: not even the footprint's rows are
+// worked out, since most steps of a long program run where the material is gone already.
 template <class VisitColumn>
 void visit_tile_columns(const GridFrame& grid, const SweptStep& step, const FootprintRange& f,
                         int ti, int tj, bool skip, VisitColumn&& visit_column, TileResult& r) {
+  if (skip) return;
   const int ia = std::max(f.i0, ti * kTileColumns);
   const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
   const int ja = std::max(f.j0, tj * kTileColumns);
@@ -81,7 +83,6 @@ void visit_tile_columns(const GridFrame& grid, const SweptStep& step, const Foot
     const int b = std::min(ib, last_column_index(xhi, grid.x0, grid.dx));
     if (a > b) continue;
     r.columns_visited += std::uint64_t(b - a + 1);
-    if (skip) continue;
     const std::size_t row = std::size_t(j) * std::size_t(grid.nx);
     for (int i = a; i <= b; ++i)
       visit_column(row + std::size_t(i), i, j, grid.column_x(i), y, r);
@@ -90,7 +91,7 @@ void visit_tile_columns(const GridFrame& grid, const SweptStep& step, const Foot
 
 // Calls visit_column(column index, i, j, x, y, TileResult&) for every column whose centre the
 // step's footprint may cover, tile by tile, except in tiles where skip_tile(tile) is true (their
-// columns still count as visited); tile_done(tile, result) follows each tile that was not
+// columns are not visited); tile_done(tile, result) follows each tile that was not
 // skipped, on the thread that ran it. Returns the sum over tiles in tile order. Steps that touch
 // fewer than `parallel_min_columns` columns run on the calling thread (same result). `scratch`
 // is reused from step to step.

@@ -10,64 +10,79 @@ namespace ncjoule {
 namespace {
 
 // Shortest text that reads back to the same number.
-template <class T> void number(std::ostream& out, T value) {
+template <class T> void number(std::string& out, T value) {
   char text[32];
   const auto result = std::to_chars(text, text + sizeof text, value);
-  out.write(text, result.ptr - text);
+  out.append(text, result.ptr);
 }
 
-void quoted(std::ostream& out, std::string_view text) {
+void quoted(std::string& out, std::string_view text) {
   if (text.find_first_of(",\"\r\n") == std::string_view::npos) {
-    out << text;
+    out.append(text);
     return;
   }
-  out.put('"');
+  out.push_back('"');
   for (char ch : text) {
-    if (ch == '"') out.put('"');
-    out.put(ch);
+    if (ch == '"') out.push_back('"');
+    out.push_back(ch);
   }
-  out.put('"');
+  out.push_back('"');
+}
+
+void row(std::string& out, const LineSummary& b, const Estimate& e) {
+  number(out, b.line + 1);
+  out.push_back(',');
+  out.append(line_kind_name(b.kind));
+  out.push_back(',');
+  if (b.operation > 0 && b.operation <= e.operations.size())
+    quoted(out, e.operations[b.operation - 1].name);
+  for (double v : {b.start_s, b.time_s}) {
+    out.push_back(',');
+    number(out, v);
+  }
+  for (float v : {b.length_mm, b.entry_speed_mm_s, b.exit_speed_mm_s, b.peak_speed_mm_s}) {
+    out.push_back(',');
+    number(out, v);
+  }
+  out.push_back(',');
+  number(out, b.commands);
+  out.push_back(',');
+  number(out, b.removed_mm3);
+  out.push_back(',');
+  number(out, b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0);
+  out.push_back(',');
+  number(out, b.mrr_peak_mm3_s);
+  out.push_back(',');
+  number(out, b.time_s > 0 ? b.energy_j / b.time_s : 0.0);
+  out.push_back(',');
+  number(out, b.power_peak_w);
+  out.push_back(',');
+  number(out, b.energy_j);
+  for (float v : b.components_j) {
+    out.push_back(',');
+    number(out, v);
+  }
+  out.push_back('\n');
 }
 
 } // namespace
 
 void write_estimate_csv(std::ostream& out, const Estimate& e) {
-  out << "line,kind,operation,start_s,time_s,length_mm,entry_speed_mm_s,exit_speed_mm_s,"
-         "peak_speed_mm_s,commands,removed_mm3,mrr_mm3_s,mrr_peak_mm3_s,power_w,power_peak_w,"
-         "energy_j";
+  std::string buffer = "line,kind,operation,start_s,time_s,length_mm,entry_speed_mm_s,"
+                       "exit_speed_mm_s,peak_speed_mm_s,commands,removed_mm3,mrr_mm3_s,"
+                       "mrr_peak_mm3_s,power_w,power_peak_w,energy_j";
   for (std::size_t i = 0; i < kPowerComponentCount; ++i)
-    out << ',' << component_name(PowerComponent(i)) << "_j";
-  out << '\n';
+    buffer += ',' + std::string(component_name(PowerComponent(i))) + "_j";
+  buffer += '\n';
+  // Written in large pieces: a stream write per field is slow.
   for (const LineSummary& b : e.lines) {
-    out << b.line + 1 << ',' << line_kind_name(b.kind) << ',';
-    if (b.operation > 0 && b.operation <= e.operations.size())
-      quoted(out, e.operations[b.operation - 1].name);
-    out << ',';
-    number(out, b.start_s);
-    out << ',';
-    number(out, b.time_s);
-    for (float v : {b.length_mm, b.entry_speed_mm_s, b.exit_speed_mm_s, b.peak_speed_mm_s}) {
-      out << ',';
-      number(out, v);
+    row(buffer, b, e);
+    if (buffer.size() >= (1 << 16)) {
+      out.write(buffer.data(), std::streamsize(buffer.size()));
+      buffer.clear();
     }
-    out << ',' << b.commands << ',';
-    number(out, b.removed_mm3);
-    out << ',';
-    number(out, b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0);
-    out << ',';
-    number(out, b.mrr_peak_mm3_s);
-    out << ',';
-    number(out, b.time_s > 0 ? b.energy_j / b.time_s : 0.0);
-    out << ',';
-    number(out, b.power_peak_w);
-    out << ',';
-    number(out, b.energy_j);
-    for (float v : b.components_j) {
-      out << ',';
-      number(out, v);
-    }
-    out << '\n';
   }
+  out.write(buffer.data(), std::streamsize(buffer.size()));
 }
 
 std::string estimate_csv(const Estimate& e) {

@@ -6,23 +6,36 @@
 
 namespace ncjoule::report_detail {
 
-JsonWriter::JsonWriter(std::ostream& out, int indent) : out_(out), indent_(indent) {}
+JsonWriter::JsonWriter(std::ostream& out, int indent) : out_(out), indent_(indent) {
+  buffer_.reserve(1 << 16);
+}
+
+JsonWriter::~JsonWriter() {
+  out_.write(buffer_.data(), std::streamsize(buffer_.size()));
+}
+
+void JsonWriter::flush_if_full() {
+  if (buffer_.size() < (1 << 16)) return;
+  out_.write(buffer_.data(), std::streamsize(buffer_.size()));
+  buffer_.clear();
+}
 
 void JsonWriter::newline() {
   if (indent_ <= 0) return;
-  out_.put('\n');
+  put('\n');
   for (std::size_t i = 0; i < levels_.size() * std::size_t(indent_); ++i)
-    out_.put(' ');
+    put(' ');
 }
 
 void JsonWriter::before_value() {
+  flush_if_full();
   if (after_key_) {
     after_key_ = false;
     return;
   }
   if (levels_.empty()) return;
   Level& level = levels_.back();
-  if (!level.empty) out_.put(',');
+  if (!level.empty) put(',');
   level.empty = false;
   newline();
 }
@@ -30,21 +43,21 @@ void JsonWriter::before_value() {
 JsonWriter& JsonWriter::key(std::string_view name) {
   before_value();
   write_string(name);
-  out_.put(':');
-  if (indent_ > 0) out_.put(' ');
+  put(':');
+  if (indent_ > 0) put(' ');
   after_key_ = true;
   return *this;
 }
 
 void JsonWriter::begin_object() {
   before_value();
-  out_.put('{');
+  put('{');
   levels_.push_back({false, true});
 }
 
 void JsonWriter::begin_array() {
   before_value();
-  out_.put('[');
+  put('[');
   levels_.push_back({true, true});
 }
 
@@ -52,14 +65,14 @@ void JsonWriter::end_object() {
   const bool empty = levels_.back().empty;
   levels_.pop_back();
   if (!empty) newline();
-  out_.put('}');
+  put('}');
 }
 
 void JsonWriter::end_array() {
   const bool empty = levels_.back().empty;
   levels_.pop_back();
   if (!empty) newline();
-  out_.put(']');
+  put(']');
 }
 
 void JsonWriter::value(double number) {
@@ -67,7 +80,7 @@ void JsonWriter::value(double number) {
   before_value();
   char text[32];
   const auto r = std::to_chars(text, text + sizeof text, number);
-  out_.write(text, r.ptr - text);
+  put(std::string_view(text, std::size_t(r.ptr - text)));
 }
 
 void JsonWriter::value(float number) {
@@ -75,14 +88,14 @@ void JsonWriter::value(float number) {
   before_value();
   char text[32];
   const auto r = std::to_chars(text, text + sizeof text, number);
-  out_.write(text, r.ptr - text);
+  put(std::string_view(text, std::size_t(r.ptr - text)));
 }
 
 void JsonWriter::value(std::int64_t number) {
   before_value();
   char text[32];
   const auto r = std::to_chars(text, text + sizeof text, number);
-  out_.write(text, r.ptr - text);
+  put(std::string_view(text, std::size_t(r.ptr - text)));
 }
 
 void JsonWriter::value(std::string_view text) {
@@ -92,12 +105,12 @@ void JsonWriter::value(std::string_view text) {
 
 void JsonWriter::value(bool flag) {
   before_value();
-  out_ << (flag ? "true" : "false");
+  put(flag ? "true" : "false");
 }
 
 void JsonWriter::null() {
   before_value();
-  out_ << "null";
+  put("null");
 }
 
 namespace {
@@ -123,7 +136,7 @@ std::size_t utf8_length(std::string_view text, std::size_t i) {
 } // namespace
 
 void JsonWriter::write_string(std::string_view text) {
-  out_.put('"');
+  put('"');
   for (std::size_t i = 0; i < text.size(); ++i) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
     if (c >= 0x80) {
@@ -131,40 +144,40 @@ void JsonWriter::write_string(std::string_view text) {
       // document stays valid JSON.
       const std::size_t n = utf8_length(text, i);
       if (n == 0) {
-        out_ << "\ufffd";
+        put("\ufffd");
       } else {
-        out_.write(text.data() + i, std::streamsize(n));
+        put(text.substr(i, n));
         i += n - 1;
       }
       continue;
     }
     switch (c) {
     case '"':
-      out_ << "\\\"";
+      put("\\\"");
       break;
     case '\\':
-      out_ << "\\\\";
+      put("\\\\");
       break;
     case '\n':
-      out_ << "\\n";
+      put("\\n");
       break;
     case '\r':
-      out_ << "\\r";
+      put("\\r");
       break;
     case '\t':
-      out_ << "\\t";
+      put("\\t");
       break;
     default:
       if (c < 0x20 || c == 0x7f) {
         char esc[8];
         std::snprintf(esc, sizeof esc, "\\u%04x", c);
-        out_ << esc;
+        put(esc);
       } else {
-        out_.put(char(c));
+        put(char(c));
       }
     }
   }
-  out_.put('"');
+  put('"');
 }
 
 } // namespace ncjoule::report_detail

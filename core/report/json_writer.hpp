@@ -16,6 +16,9 @@ class JsonWriter {
 public:
   // `indent` spaces per level (0 or less: one line).
   JsonWriter(std::ostream& out, int indent);
+  ~JsonWriter(); // writes out what is buffered
+  JsonWriter(const JsonWriter&) = delete;
+  JsonWriter& operator=(const JsonWriter&) = delete;
 
   void begin_object();
   void end_object();
@@ -44,8 +47,12 @@ private:
   void before_value();
   void newline();
   void write_string(std::string_view text);
+  void put(char c) { buffer_.push_back(c); }
+  void put(std::string_view text) { buffer_.append(text); }
+  void flush_if_full();
 
   std::ostream& out_;
+  std::string buffer_; // written to out_ in large pieces: a stream write per character is slow
   int indent_;
   struct Level {
     bool array = false;

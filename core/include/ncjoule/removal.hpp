@@ -207,6 +207,7 @@ struct Point3 {
 struct EngineStats {
   std::uint64_t steps = 0;
   std::uint64_t columns_visited = 0; // columns inside the tool's footprint, summed over steps
+                                     // (dexel: in tiles with material above the tool)
   std::uint64_t cells_tested = 0;    // dexel: columns whose envelope was computed;
                                      // voxel: voxels whose centre was tested
 };

@@ -218,4 +218,18 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   return out;
 }
 
+AnnotatedProgram annotate_program(std::string path, std::string_view text,
+                                  const MachineProfile& machine, const EstimateOptions& options,
+                                  const AnnotateOptions& annotate_options) {
+  AnnotatedProgram out;
+  // The program as it was before any earlier annotation: what is estimated and written back.
+  const SourceFile program = make_source(std::move(path), strip(text));
+  out.estimate = estimate_program(program, machine, options);
+  if (out.estimate.failed) return out;
+  for (const Diagnostic& d : out.estimate.diagnostics)
+    if (d.severity == Severity::Error) out.has_errors = true;
+  out.text = annotate(program, out.estimate, machine, annotate_options);
+  return out;
+}
+
 } // namespace ncjoule

@@ -67,17 +67,16 @@ ncjoule_result* make_result(ncjoule_context* context, const ncjoule::SourceFile&
 // The annotated text of a program, or nullopt with last_error set.
 std::optional<std::string> annotated_text(ncjoule_context* context, const std::string& name,
                                           const std::string& text) {
-  const ncjoule::SourceFile program = ncjoule::make_source(name, ncjoule::strip(text));
-  const ncjoule::Estimate e =
-      ncjoule::estimate_program(program, context->machine, context->options);
-  if (e.failed) {
+  ncjoule::AnnotatedProgram result =
+      ncjoule::annotate_program(name, text, context->machine, context->options);
+  if (result.estimate.failed) {
     std::string errors;
-    for (const ncjoule::Diagnostic& d : e.diagnostics)
+    for (const ncjoule::Diagnostic& d : result.estimate.diagnostics)
       if (d.severity == ncjoule::Severity::Error) errors += "\n" + ncjoule::format_diagnostic(d);
     fail(name + " could not be estimated" + errors);
     return std::nullopt;
   }
-  return ncjoule::annotate(program, e, context->machine);
+  return std::move(result.text);
 }
 
 std::optional<std::string> read_file(const char* path) {

@@ -44,33 +44,27 @@ int run_annotate(const AnnotateCliOptions& o) {
   const auto input = read_source(o.file);
   if (!input) return kInputError;
 
-  // The program as it was before any earlier annotation: what is estimated and written back.
-  const SourceFile program = make_source(input->path, strip(input->text));
   ProgressBar progress("estimating", 1);
-  progress.begin(0, program.path);
+  progress.begin(0, input->path);
   EstimateOptions with_progress = *options;
   with_progress.progress = progress.callback();
-  const Estimate e = estimate_program(program, machine, with_progress);
+  AnnotateOptions annotate_options;
+  annotate_options.header = !o.no_header;
+  const AnnotatedProgram result =
+      annotate_program(input->path, input->text, machine, with_progress, annotate_options);
   progress.finish();
-  print_diagnostics(e.diagnostics);
-  if (e.failed) {
-    std::cerr << "ncjoule: " << program.path
+  print_diagnostics(result.estimate.diagnostics);
+  if (result.estimate.failed) {
+    std::cerr << "ncjoule: " << input->path
               << " could not be estimated (see above); nothing was written\n";
     return kInputError;
   }
-  // Errors are what the controller itself would refuse: the program is still annotated (the
-  // header lists them), and the exit status says so.
-  bool errors = false;
-  for (const Diagnostic& d : e.diagnostics)
-    if (d.severity == Severity::Error) errors = true;
-
-  AnnotateOptions annotate_options;
-  annotate_options.header = !o.no_header;
-  const std::string text = annotate(program, e, machine, annotate_options);
-
+  const std::string& text = result.text;
   const int written = write_program(o.file, o.output, o.in_place, text);
-  if (written == kOk && errors) {
-    std::cerr << "ncjoule: " << program.path
+  if (written == kOk && result.has_errors) {
+    // Errors are what the controller itself would refuse: the program is still annotated (the
+    // header lists them), and the exit status says so.
+    std::cerr << "ncjoule: " << input->path
               << " has errors a controller would refuse (see above); annotated anyway\n";
     return kInputError;
   }

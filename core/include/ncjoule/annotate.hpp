@@ -35,6 +35,19 @@ struct AnnotateOptions {
 std::string annotate(const SourceFile& source, const Estimate& estimate,
                      const MachineProfile& machine, const AnnotateOptions& options = {});
 
+// The whole job of annotating a program's text, as the command line and the C API do it: old
+// annotations are taken out, the program is estimated, and written back with its predictions.
+// `text` is empty when no estimate could be made (estimate.failed). A program with errors its
+// controller would refuse is annotated all the same (the header lists them): has_errors says so.
+struct AnnotatedProgram {
+  std::string text;
+  Estimate estimate;
+  bool has_errors = false;
+};
+AnnotatedProgram annotate_program(std::string path, std::string_view text,
+                                  const MachineProfile& machine, const EstimateOptions& options,
+                                  const AnnotateOptions& annotate_options = {});
+
 // The text without ncjoule's annotations: inserted header lines (with their line endings) and
 // inserted comments (with the space before them) are removed; every other byte is kept.
 std::string strip(std::string_view text);

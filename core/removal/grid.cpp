@@ -54,7 +54,9 @@ double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Too
   for (const auto& [number, tool] : tools)
     if (tool.diameter_mm > 0 && (smallest == 0 || tool.diameter_mm < smallest))
       smallest = tool.diameter_mm;
-  const double coarse = smallest > 0 ? std::clamp(smallest / 10.0, fine, 2.0) : fine;
+  // Coarser than a twentieth of the diameter, single cuts lose more than half a percent of their
+  // volume (docs/removal.md).
+  const double coarse = smallest > 0 ? std::clamp(smallest / 20.0, fine, 2.0) : fine;
   // Columns visited: per step of length s, a band 2r wide and 2r + s long, over dx^2 each.
   auto work = [&](double dx) {
     const double s = recommended_sample_step(tools, dx);

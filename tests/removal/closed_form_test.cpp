@@ -134,3 +134,75 @@ TEST_CASE("long steps are swept exactly: samples only at the end points miss not
   }
   CHECK(fine.removed_mm3 > 0);
 }
+
+TEST_CASE("volume error against the grid spacing, from a 120th to a tenth of the diameter") {
+  // The automatic grid ranges from d/120 to d/20 (automatic_grid_spacing): finer for short
+  // programs, coarser for long ones; d/10 is as coarse as --grid is sensible.
+  // bench/grid_accuracy.sh prints the table; the bounds here hold with room to spare.
+  struct Case {
+    const char* name;
+    std::map<int, Tool> tools;
+    ProgramBuilder program;
+    Box3 stock;
+    double want;
+  };
+  std::vector<Case> cases;
+  {
+    const double R = 5, depth = 4, L = 50;
+    ProgramBuilder p;
+    p.tool(1).feed_rate(300).rapid(0, 0, 5).feed(0, 0, -depth).feed(L, 0, -depth).rapid(L, 0, 5);
+    cases.push_back({"slot with a plunge, 10 mm flat",
+                     {{1, flat_end_mill(1, 2 * R)}},
+                     p,
+                     {-20, -20, -10, 80, 20, 0},
+                     kPi * R * R * depth + 2 * R * L * depth});
+  }
+  {
+    const double R = 3, Rc = 15, depth = 2;
+    ProgramBuilder p;
+    p.tool(1).feed_rate(600).rapid(Rc, 0, 5).feed(Rc, 0, -depth);
+    p.arc(Rc, 0, -depth, 0, 0, +1).rapid(Rc, 0, 5);
+    cases.push_back({"annulus, 6 mm flat",
+                     {{1, flat_end_mill(1, 2 * R)}},
+                     p,
+                     {-25, -25, -5, 25, 25, 0},
+                     kPi * ((Rc + R) * (Rc + R) - (Rc - R) * (Rc - R)) * depth});
+  }
+  {
+    const double R = 4, L = 40;
+    ProgramBuilder p;
+    p.tool(1).feed_rate(300).rapid(0, 0, 5).feed(0, 0, -R).feed(L, 0, -R).rapid(L, 0, 5);
+    cases.push_back({"ball groove, 8 mm ball",
+                     {{1, ball_end_mill(1, 2 * R)}},
+                     p,
+                     {-10, -10, -8, 50, 10, 0},
+                     kPi * R * R / 2 * L + 2.0 / 3.0 * kPi * R * R * R});
+  }
+  {
+    const double R = 4, depth = 10;
+    ProgramBuilder p;
+    p.tool(1).feed_rate(120).rapid(0, 0, 3).feed(0, 0, -depth).rapid(0, 0, 3);
+    const double cone = R / std::tan(59 * kPi / 180);
+    cases.push_back({"drilled hole, 8 mm 118 deg",
+                     {{1, drill(1, 2 * R, 118)}},
+                     p,
+                     {-10, -10, -15, 10, 10, 0},
+                     kPi * R * R * (depth - cone) + kPi * R * R * cone / 3});
+  }
+  for (const Case& c : cases) {
+    const double diameter = c.tools.begin()->second.diameter_mm;
+    for (const auto& [divisor, bound] :
+         std::vector<std::pair<double, double>>{{120, 2e-3}, {60, 4e-3}, {40, 6e-3},
+                                                {20, 1.2e-2}, {10, 5e-2}}) {
+      const double grid = diameter / divisor;
+      const RemovalResult r = run(c.program, c.tools, c.stock, EngineKind::Dexel, grid);
+      const double error = relative_error(r.removed_mm3, c.want);
+      report(std::string("grid accuracy | ") + c.name + " | d/" + std::to_string(int(divisor)) +
+                 " | " + std::to_string(grid),
+             error);
+      CAPTURE(c.name);
+      CAPTURE(divisor);
+      CHECK(error < bound);
+    }
+  }
+}

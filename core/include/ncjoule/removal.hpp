@@ -266,13 +266,13 @@ struct RemovalOptions {
 };
 inline constexpr std::size_t kDefaultRemovalMemoryBudget = std::size_t(1) << 30; // 1 GiB
 
-// The automatic grid spacing for a set of tools: the smallest diameter / 20 (10 cells across a
-// radius), kept within [0.02, 1] mm: 0.3 mm for a 6 mm end mill. Removed volumes stay within
-// about 0.1% of the exact ones at this spacing on the closed-form cases (docs/removal.md gives
+// The finest grid spacing the automatic grid uses: the smallest diameter / 120 (60 cells across
+// a radius), kept within [0.01, 1] mm: 0.05 mm for a 6 mm end mill. Removed volumes stay within
+// about 0.05% of the exact ones at this spacing on the closed-form cases (docs/removal.md gives
 // the error against the grid spacing).
 double default_grid_spacing(const std::map<int, Tool>& tools);
 // The grid removal uses when none is given: default_grid_spacing where the program is small
-// enough, else coarser, up to a tenth of the smallest tool diameter, so that the work (steps
+// enough, else coarser, up to a twentieth of the smallest tool diameter, so that the work (steps
 // times the columns each covers, estimated from the cutting length of each tool) stays within
 // `work_columns`. Larger programs get a coarser grid and stay fast; short ones stay exact.
 double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,

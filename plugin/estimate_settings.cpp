@@ -1,6 +1,7 @@
 #include "estimate_settings.hpp"
 
 #include <iostream>
+#include <unistd.h>
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
@@ -35,6 +36,10 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(CLI::IsMember({"dexel", "voxel"}));
   cmd.add_option("--grid", s.grid_mm, "Removal grid spacing in mm (default: from the tools)")
       ->check(CLI::PositiveNumber);
+  cmd.add_option("--memory-limit", s.memory_limit_mib,
+                 "Memory the stock model may take, in MiB (default: a quarter of this machine's "
+                 "memory); a --grid that needs more is refused, the automatic one is coarsened")
+      ->check(CLI::PositiveNumber);
   cmd.add_flag("--no-removal", s.no_removal,
                "Do not simulate material removal (no tools needed; cutting power is zero)");
   cmd.add_option("--co2", s.co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
@@ -49,6 +54,12 @@ bool load_machine(const std::string& path, MachineProfile& machine) {
     std::cerr << "ncjoule: bad machine profile: " << e.what() << '\n';
     return false;
   }
+}
+
+std::size_t default_memory_budget_bytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return kDefaultRemovalMemoryBudget;
+  return std::size_t(pages) * std::size_t(page) / 4;
 }
 
 std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& exit_code) {
@@ -97,6 +108,9 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& 
   }
   options.removal.engine = s.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
   options.removal.grid_mm = s.grid_mm;
+  options.removal.memory_budget_bytes = s.memory_limit_mib > 0
+                                            ? std::size_t(s.memory_limit_mib * 1024 * 1024)
+                                            : default_memory_budget_bytes();
   options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
   options.energy.price_per_kwh = s.price_per_kwh;
   return options;

@@ -22,6 +22,7 @@ struct EstimateSettings {
   std::string tool_units = "mm";  // units of the tool table
   std::string engine = "dexel";
   double grid_mm = 0;
+  double memory_limit_mib = 0; // 0: a quarter of the machine's memory
   bool no_removal = false;
   std::optional<double> co2_kg_per_kwh, price_per_kwh;
 };
@@ -29,6 +30,9 @@ struct EstimateSettings {
 // Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --engine,
 // --grid, --no-removal, --co2 and --price to a subcommand.
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
+
+// A quarter of this machine's physical memory: the default budget of the stock model.
+std::size_t default_memory_budget_bytes();
 
 // Loads the machine profile; prints why and returns false when it is wrong.
 bool load_machine(const std::string& path, MachineProfile& machine);

@@ -138,7 +138,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     e.failed = true;
     return e;
   }
-  if (e.removal) add_diagnostics(e, e.removal->diagnostics, source.path);
+  if (removal) add_diagnostics(e, removal->summary().diagnostics, source.path);
   logger().info("stream: {} commands in {:.3f} s", commands.size(), seconds_since(t));
   if (options.progress) options.progress(1);
   return e;

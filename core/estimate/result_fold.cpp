@@ -169,8 +169,9 @@ void ResultFolder::finish(double total_s) {
   out_.time_s = total_s;
   out_.time = time_;
   out_.energy = energy_.totals(total_s);
-  if (removal_) {
+  if (removal_ && removal_->ready()) {
     out_.removal = removal_->summary();
+    out_.removal->diagnostics.clear(); // the estimate's diagnostics have them
     out_.energy.removed_mm3 = out_.removal->removed_mm3;
     out_.energy.sec_j_mm3 =
         out_.energy.removed_mm3 > 0 ? out_.energy.energy_j / out_.energy.removed_mm3 : 0.0;

@@ -25,6 +25,11 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
                  "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
       ->allow_extra_args(false); // one tool per --tool, so the program's file name is not taken
+  cmd.add_option("--material", s.material,
+                 "Workpiece material (aluminium-alloy, brass, cast-iron, mild-steel, alloy-steel, "
+                 "stainless-steel, titanium-alloy, plastic, wood, mdf, ...; docs/models.md): the "
+                 "cutting energy of profiles that take it from the material; default: the job "
+                 "file's, else the profile's");
   cmd.add_option("-t,--tool-table", s.tool_table,
                  "LinuxCNC tool table (.tbl): lengths for G43, and a tool for every entry with "
                  "a diameter (its comment names the shape, else a flat end mill)");
@@ -81,6 +86,13 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& 
       if (d.severity == Severity::Error) return exit_code = kInputError, std::nullopt;
   }
   options.simulate_removal = !s.no_removal;
+  if (!s.material.empty() && !find_material(s.material)) {
+    std::cerr << "ncjoule: unknown material '" << s.material << "'; known materials:";
+    for (const Material& m : materials())
+      std::cerr << ' ' << m.name;
+    std::cerr << '\n';
+    return exit_code = kUsage, std::nullopt;
+  }
   if (!s.job.empty()) {
     std::vector<Diagnostic> job_diagnostics;
     const auto job = read_job_file(s.job, job_diagnostics);
@@ -88,7 +100,9 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& 
     if (!job) return exit_code = kInputError, std::nullopt;
     if (job->stock) options.stock = job->stock;
     options.tools = job->tools;
+    options.material = job->material;
   }
+  if (!s.material.empty()) options.material = s.material;
   for (const std::string& text : s.tools) {
     std::string error;
     const auto tool = parse_tool_spec(text, &error);

@@ -19,6 +19,7 @@ struct EstimateSettings {
   std::string job;                // job file (TOML): stock and tool table
   std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
   std::string tool_table;         // LinuxCNC .tbl
+  std::string material;           // workpiece material; empty: the job file's, else the profile's
   std::string tool_units = "mm";  // units of the tool table
   std::string engine = "dexel";
   double grid_mm = 0;

@@ -110,6 +110,9 @@ std::vector<Field> block_fields(const LineSummary* summary, double end_s,
   fields.push_back({"P=" + format_si(time_s > 0 ? energy_j / time_s : 0.0, "W"), 5});
   fields.push_back({"MRR=" + format_significant(time_s > 0 ? removed / time_s : 0.0, 3, 3), 6});
   fields.push_back({"CUM=" + format_duration(end_s), 7});
+  // A cut asking the spindle for more than its rating: said on the block, never dropped.
+  if (summary && summary->spindle_load > 1)
+    fields.push_back({"LOAD=" + format_significant(100.0 * summary->spindle_load, 3, 0) + "%", 0});
   if (op) {
     const std::string name = safe_token(op->name, kOperationNameLength);
     fields.push_back({"OP=" + (name.empty() ? "T" + std::to_string(op->tool) : name), 2});

@@ -52,7 +52,7 @@ Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
   const std::size_t slash = path.find_last_of("/\\");
   const std::string file = slash == std::string::npos ? path : path.substr(slash + 1);
   if (!file.empty()) g.fields.push_back(field("PROFILE", safe_token(file, 60)));
-  g.fields.push_back(field("MODEL", std::string(model_name(machine.power.model))));
+  g.fields.push_back(field("MODEL", std::string(model_name(estimate.power.model))));
   g.fields.push_back(field("DIALECT", safe_token(estimate.dialect.name, 20)));
   g.fields.push_back(field("DIALECT_FROM", estimate.dialect_origin == DialectOrigin::Given ? "given"
                                            : estimate.dialect_origin == DialectOrigin::Detected
@@ -64,16 +64,22 @@ Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
 
 // The constants of the model in use, named by their profile keys (the Pavanaskar ones without
 // their "pavanaskar." prefix): the per-axis KA/KB terms next to Zhou's MRR term.
-Group constants(const MachineProfile& machine) {
+Group constants(const PowerConstants& power) {
   Group g{"CONST", {}};
-  std::vector<PowerParameter> used = model_parameters(machine.power.model);
+  std::vector<PowerParameter> used = model_parameters(power.model);
   if (std::find(used.begin(), used.end(), PowerParameter::ToolChange) == used.end())
     used.push_back(PowerParameter::ToolChange);
   for (PowerParameter p : used) {
     std::string_view key = parameter_info(p).key;
     constexpr std::string_view kPrefix = "pavanaskar.";
     if (key.substr(0, kPrefix.size()) == kPrefix) key.remove_prefix(kPrefix.size());
-    g.fields.push_back(field(key, format_significant(get_parameter(machine.power, p), 4, 12)));
+    g.fields.push_back(field(key, format_significant(get_parameter(power, p), 4, 12)));
+  }
+  // Where the cutting term's constants come from: the machine's fit or the material table.
+  if (!power.cutting_source.empty()) {
+    const bool material = power.cutting_term == CuttingTerm::Material;
+    g.fields.push_back(field("CUT_FROM", material ? "material_" + safe_token(power.material, 24)
+                                                  : std::string("fit")));
   }
   return g;
 }
@@ -181,7 +187,7 @@ std::vector<std::string> header_lines(const Estimate& estimate, const MachinePro
                                       const std::function<int(int)>& line_in_output) {
   std::vector<std::string> lines;
   for (const Group& g : {totals(estimate), components(estimate), machine_used(estimate, machine),
-                         constants(machine), legend()})
+                         constants(estimate.power), legend()})
     wrap(g, style, lines);
   // One line per warning, cut to the line length: a warning is read, not parsed.
   for (std::string text : warning_texts(estimate, line_in_output)) {

@@ -37,6 +37,38 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
                    removed_mm3);
 }
 
+// Kienzle: the cutting force per chip area falls as the chip thickens. With the tool's flutes
+// known, the chip thickness is the feed per tooth (the chip's largest thickness); the cutting
+// term is scaled by k_c(h) / k_c.
+void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
+                                                  OperatingSegment* first,
+                                                  OperatingSegment* last) const {
+  const auto& material = constants_.cutting_material;
+  if (!material || !(material->kc11_n_mm2 > 0) || !(material->kc_j_mm3 > 0)) return;
+  const auto flutes = options_.flutes.find(command.state.tool);
+  const double rpm = command.state.spindle_rpm;
+  if (flutes == options_.flutes.end() || flutes->second <= 0 || !(rpm > 0)) return;
+  if (command.state.feed_mode != FeedMode::UnitsPerMinute || !(command.state.feed > 0)) return;
+  const double per_tooth_mm = command.state.feed / (rpm * flutes->second);
+  const double factor = material->kc_at(per_tooth_mm) / material->kc_j_mm3;
+  for (OperatingSegment* seg = first; seg != last; ++seg)
+    seg->start.cutting_factor = seg->end.cutting_factor = factor;
+}
+
+void EnergyIntegrator::note_cutting(const OperatingPoint& p) {
+  if (!(p.mrr_mm3_s > 0) || !(p.spindle_on > 0)) return;
+  if (!cut_seen_) {
+    cut_rpm_min_ = cut_rpm_max_ = p.spindle_rpm;
+    cut_mrr_min_ = cut_mrr_max_ = p.mrr_mm3_s;
+    cut_seen_ = true;
+    return;
+  }
+  cut_rpm_min_ = std::min(cut_rpm_min_, p.spindle_rpm);
+  cut_rpm_max_ = std::max(cut_rpm_max_, p.spindle_rpm);
+  cut_mrr_min_ = std::min(cut_mrr_min_, p.mrr_mm3_s);
+  cut_mrr_max_ = std::max(cut_mrr_max_, p.mrr_mm3_s);
+}
+
 CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand& command,
                                           const TimedCommand& timed, const OperatingSegment* first,
                                           const OperatingSegment* last, double removed_mm3) {
@@ -56,6 +88,16 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
     const double peak = std::max(component_sum(a), component_sum(b));
     ce.peak_power_w = has_power ? std::max(ce.peak_power_w, peak) : peak;
     has_power = true;
+    note_cutting(seg.start);
+    note_cutting(seg.end);
+    // Load on the spindle: the cutting power it delivers against its rating at that speed.
+    constexpr std::size_t kCut = static_cast<std::size_t>(PowerComponent::Cutting);
+    for (const auto& [power, point] :
+         {std::pair{a[kCut], &seg.start}, std::pair{b[kCut], &seg.end}}) {
+      const double rated = rated_spindle_power_w(constants_, point->spindle_rpm);
+      if (rated > 0 && power > 0)
+        ce.spindle_load = std::max(ce.spindle_load, power * constants_.cutting_efficiency / rated);
+    }
   }
   ce.energy_j = component_sum(ce.components_j);
   // The program's peak is over what runs for some time.
@@ -81,6 +123,7 @@ CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& comma
                                     std::vector<Diagnostic>* diagnostics) {
   const std::size_t first = segments.size();
   append_operating_segments(index, command, timed, removal, previous_rpm_, segments, diagnostics);
+  correct_for_chip_thickness(command, segments.data() + first, segments.data() + segments.size());
   return integrate(index, command, timed, segments.data() + first,
                    segments.data() + segments.size(), removal ? removal->removed_mm3 : 0.0);
 }
@@ -96,6 +139,33 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   result.co2_kg = kwh * options_.co2_kg_per_kwh.value_or(constants_.co2_kg_per_kwh);
   result.cost = kwh * options_.price_per_kwh.value_or(constants_.price_per_kwh);
   result.currency = options_.currency.value_or(constants_.currency);
+  // A fitted cutting term used outside what it was fitted on: once per program, saying how far.
+  const ZhouConstants& z = constants_.zhou;
+  const bool fitted =
+      constants_.model != PowerModel::Pavanaskar && constants_.cutting_term == CuttingTerm::Fitted;
+  if (fitted && cut_seen_) {
+    char text[320];
+    if (z.fitted_rpm_max > 0 &&
+        (cut_rpm_max_ > z.fitted_rpm_max || cut_rpm_min_ < z.fitted_rpm_min)) {
+      const double worst = cut_rpm_max_ > z.fitted_rpm_max ? cut_rpm_max_ / z.fitted_rpm_max
+                                                           : z.fitted_rpm_min / cut_rpm_min_;
+      std::snprintf(text, sizeof text,
+                    "the cutting term c3*n^c4*MRR was fitted on %g-%g rpm; this program cuts at "
+                    "%g-%g rpm (%.1fx outside): its cutting power is extrapolated",
+                    z.fitted_rpm_min, z.fitted_rpm_max, cut_rpm_min_, cut_rpm_max_, worst);
+      result.diagnostics.push_back({Severity::Warning, "", 0, 0, text});
+    }
+    // Only above: every cut passes through low removal rates as the tool enters and leaves.
+    if (z.fitted_mrr_max_mm3_s > 0 && cut_mrr_max_ > z.fitted_mrr_max_mm3_s) {
+      std::snprintf(text, sizeof text,
+                    "the cutting term c3*n^c4*MRR was fitted on MRR %g-%g mm^3/s; this program "
+                    "removes up to %.3g mm^3/s (%.1fx the highest): its cutting power is "
+                    "extrapolated",
+                    z.fitted_mrr_min_mm3_s, z.fitted_mrr_max_mm3_s, cut_mrr_max_,
+                    cut_mrr_max_ / z.fitted_mrr_max_mm3_s);
+      result.diagnostics.push_back({Severity::Warning, "", 0, 0, text});
+    }
+  }
   return result;
 }
 

@@ -84,7 +84,8 @@ ComponentValues component_power_w(const PowerConstants& constants, const Operati
   }
   if (f.zhou_mrr_weight_w != 0.0 && f.zhou_rpm > 0.0)
     power[static_cast<std::size_t>(PowerComponent::Cutting)] +=
-        f.zhou_mrr_weight_w * constants.zhou.c3 * std::pow(f.zhou_rpm, constants.zhou.c4);
+        f.zhou_mrr_weight_w * constants.zhou.c3 * std::pow(f.zhou_rpm, constants.zhou.c4) *
+        point.cutting_factor;
   return power;
 }
 
@@ -132,7 +133,11 @@ std::string describe_power_constants(const PowerConstants& k) {
                   p.move_kb_w_per_mm_s[2], z.c3, z.c4, k.tool_change_w);
     break;
   }
-  return text;
+  std::string out = text;
+  // Where the cutting term comes from: the machine's fit or the workpiece material's table.
+  if (k.model != PowerModel::Pavanaskar && k.cutting_term == CuttingTerm::Material)
+    out += "; cutting term from the " + k.cutting_source;
+  return out;
 }
 
 } // namespace ncjoule

@@ -54,6 +54,36 @@ std::map<int, Tool> described_tools(const SourceFile& source, const EstimateOpti
   return described;
 }
 
+// The power constants for this program: the profile's, with the cutting term of the workpiece
+// material where the profile takes it from the material.
+PowerConstants effective_power(const MachineProfile& machine, const EstimateOptions& options,
+                               Estimate& e) {
+  const PowerConstants& power = machine.power;
+  const std::string& name = options.material.empty() ? power.material : options.material;
+  if (name.empty()) return power;
+  std::optional<Material> material = find_material(name);
+  if (!material && power.profile_material && power.profile_material->name == name)
+    material = power.profile_material;
+  if (!material) {
+    e.diagnostics.push_back({Severity::Error, e.file, 0, 0,
+                             "material '" + name + "' is not one ncjoule knows (docs/models.md)"});
+    return power;
+  }
+  bool used = false;
+  PowerConstants out = with_material(power, *material, &used);
+  if (!used && !options.material.empty())
+    e.diagnostics.push_back(
+        {Severity::Warning, e.file, 0, 0,
+         "material '" + material->name + "' is not used: " + machine.name +
+             " takes its cutting power from constants fitted on that machine (" +
+             std::string(model_name(power.model)) + " model)"});
+  if (used && material->estimate)
+    e.diagnostics.push_back({Severity::Note, e.file, 0, 0,
+                             "material '" + material->name +
+                                 "': its cutting energy is an estimate, not a handbook value"});
+  return out;
+}
+
 } // namespace
 
 Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
@@ -67,6 +97,8 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     interpreter.dialect = find_dialect(machine.dialect); // "auto" finds none: detected
   interpreter.fallback_dialect = find_dialect(machine.fallback_dialect);
   interpreter.tools = options.tool_table;
+
+  e.power = effective_power(machine, options, e);
 
   // 1. The first pass. Stage times go to the log (-v): the benchmarks read them.
   auto t = Clock::now();
@@ -118,7 +150,10 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   // 3. The stream.
   PlanOptions plan_options;
   if (removal && removal->ready()) plan_options.max_sample_step_mm = removal->sample_step_mm();
-  estimate_detail::ResultFolder folder(source, e.dialect, machine, options, removal.get(),
+  EstimateOptions folding = options;
+  for (const auto& [number, tool] : e.tools)
+    if (tool.flutes > 0) folding.energy.flutes[number] = tool.flutes;
+  estimate_detail::ResultFolder folder(source, e.dialect, e.power, folding, removal.get(),
                                        scan.commands, e);
   t = Clock::now();
   std::vector<CanonCommand> commands;

@@ -55,7 +55,7 @@ struct JobReader {
                                     "diameter_mm",     "corner_radius_mm",
                                     "point_angle_deg", "tip_diameter_mm",
                                     "flute_length_mm", "shank_diameter_mm",
-                                    "description"};
+                                    "flutes",          "description"};
       if (std::find(std::begin(known), std::end(known), key.str()) == std::end(known))
         say(Severity::Warning, &value, where + std::string(key.str()), "unknown key, ignored");
     }
@@ -82,6 +82,11 @@ struct JobReader {
     fields.tip_diameter_mm = this->number(*t, "tip_diameter_mm", tool_name);
     fields.flute_length_mm = this->number(*t, "flute_length_mm", tool_name);
     fields.shank_diameter_mm = this->number(*t, "shank_diameter_mm", tool_name);
+    if (const toml::node* z = t->get("flutes")) {
+      if (!z->is_integer() || z->value<std::int64_t>() < 1 || z->value<std::int64_t>() > 100)
+        return error(z, tool_name + "flutes", "must be a whole number from 1 to 100");
+      fields.flutes = int(*z->value<std::int64_t>());
+    }
     if (const toml::node* d = t->get("description"); d && d->is_string())
       fields.description = *d->value<std::string>();
     else
@@ -116,7 +121,8 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
   job.path = path;
 
   for (const auto& [key, value] : document)
-    if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "tool")
+    if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "tool" &&
+        key.str() != "material")
       reader.say(Severity::Warning, &value, std::string(key.str()), "unknown key, ignored");
 
   const toml::node* stock = document.get("stock");
@@ -144,6 +150,14 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
     }
   }
 
+  if (const toml::node* material = document.get("material")) {
+    if (!material->is_string() || !find_material(*material->value<std::string>()))
+      reader.error(material, "material",
+                   "must name a material ncjoule knows (aluminium-alloy, mild-steel, ...: "
+                   "docs/models.md)");
+    else
+      job.material = *material->value<std::string>();
+  }
   if (const toml::node* tools = document.get("tool")) {
     if (const toml::array* list = tools->as_array()) {
       for (std::size_t k = 0; k < list->size(); ++k)

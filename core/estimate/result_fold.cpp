@@ -1,6 +1,7 @@
 #include "result_fold.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace ncjoule::estimate_detail {
 namespace {
@@ -38,11 +39,11 @@ int kind_rank(LineKind kind) {
 } // namespace
 
 ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
-                           const MachineProfile& machine, const EstimateOptions& options,
+                           const PowerConstants& power, const EstimateOptions& options,
                            RemovalSimulator* removal, std::size_t expected_commands, Estimate& out)
-    : source_(source), dialect_(dialect), machine_(machine), options_(options), removal_(removal),
-      out_(out), expected_commands_(expected_commands), lines_(source.lines.size()),
-      energy_(machine.power, options.energy), operations_(source, dialect) {}
+    : source_(source), dialect_(dialect), power_constants_(power), options_(options),
+      removal_(removal), out_(out), expected_commands_(expected_commands),
+      lines_(source.lines.size()), energy_(power, options.energy), operations_(source, dialect) {}
 
 void ResultFolder::take(const CanonCommand& command, const TimedCommand& timed) {
   batch_commands_.push_back(command);
@@ -113,6 +114,17 @@ void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
     b.has_move = true;
   }
   if (!timed.note.empty() && b.note == 0) b.note = note_index(timed.note);
+  if (energy.spindle_load > 1) {
+    if (b.spindle_load <= 1) {
+      ++overloaded_;
+      if (first_overloaded_line_ < 0) first_overloaded_line_ = timed.line;
+    }
+    if (energy.spindle_load > worst_load_) {
+      worst_load_ = energy.spindle_load;
+      worst_load_line_ = timed.line;
+    }
+  }
+  b.spindle_load = std::max(b.spindle_load, float(energy.spindle_load));
   if (b.operation == 0) b.operation = std::uint16_t(std::min<std::size_t>(operation + 1, 65535));
 }
 
@@ -122,8 +134,8 @@ void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& 
   const bool move = is_move(command.kind);
   for (const OperatingSegment& seg : segments) {
     if (!(seg.t1_s > seg.t0_s)) continue; // instants draw nothing
-    const double p0 = component_sum(component_power_w(machine_.power, seg.start));
-    const double p1 = component_sum(component_power_w(machine_.power, seg.end));
+    const double p0 = component_sum(component_power_w(power_constants_, seg.start));
+    const double p1 = component_sum(component_power_w(power_constants_, seg.end));
     power_.add(seg.t0_s, p0);
     power_.add(seg.t1_s, p1);
     mrr_.add(seg.t0_s, seg.start.mrr_mm3_s);
@@ -138,7 +150,7 @@ void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& 
       ++s;
     if (segments.empty()) return std::pair{0.0, 0.0};
     const OperatingPoint& p = segments[s].end;
-    return std::pair{component_sum(component_power_w(machine_.power, p)), p.mrr_mm3_s};
+    return std::pair{component_sum(component_power_w(power_constants_, p)), p.mrr_mm3_s};
   };
   auto add = [&](const Pose& at, double t) {
     const auto [power, mrr] = power_at(t);
@@ -169,6 +181,21 @@ void ResultFolder::finish(double total_s) {
   out_.time_s = total_s;
   out_.time = time_;
   out_.energy = energy_.totals(total_s);
+  for (Diagnostic d : out_.energy.diagnostics) {
+    d.file = source_.path;
+    out_.diagnostics.push_back(std::move(d));
+  }
+  out_.energy.diagnostics.clear();
+  if (overloaded_ > 0) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "%zu block(s) ask the spindle for more than its rated power, the first at line "
+                  "%d, up to %.0f%% of the rating at line %d: the cut would stall, or the CAM "
+                  "feeds and speeds are wrong",
+                  overloaded_, first_overloaded_line_ + 1, 100 * worst_load_, worst_load_line_ + 1);
+    out_.diagnostics.push_back(
+        {Severity::Warning, source_.path, first_overloaded_line_ + 1, 0, text});
+  }
   if (removal_ && removal_->ready()) {
     out_.removal = removal_->summary();
     out_.removal->diagnostics.clear(); // the estimate's diagnostics have them

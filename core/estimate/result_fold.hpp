@@ -19,7 +19,8 @@ class ResultFolder {
 public:
   // `removal` may be null (removal not simulated); `expected_commands` (from the first pass)
   // scales the progress reports.
-  ResultFolder(const SourceFile& source, const Dialect& dialect, const MachineProfile& machine,
+  // `power` and `options` must outlive the folder.
+  ResultFolder(const SourceFile& source, const Dialect& dialect, const PowerConstants& power,
                const EstimateOptions& options, RemovalSimulator* removal,
                std::size_t expected_commands, Estimate& out);
 
@@ -37,7 +38,7 @@ private:
 
   const SourceFile& source_;
   const Dialect& dialect_;
-  const MachineProfile& machine_;
+  const PowerConstants& power_constants_;
   const EstimateOptions& options_;
   RemovalSimulator* removal_;
   Estimate& out_;
@@ -58,6 +59,11 @@ private:
   SeriesReducer power_, mrr_;
   PathReducer path_;
   std::map<std::string, std::uint16_t> notes_;
+  // Blocks that ask the spindle for more than its rating.
+  std::size_t overloaded_ = 0;
+  int first_overloaded_line_ = -1;
+  double worst_load_ = 0;
+  int worst_load_line_ = -1;
 
   // Scratch, reused batch after batch.
   std::vector<TimedMove> moves_;

@@ -1,4 +1,5 @@
 #include <array>
+#include <cmath>
 
 #include "sections.hpp"
 
@@ -36,8 +37,58 @@ ZhouConstants read_zhou(TableReader t, std::vector<std::string>& sources) {
   z.d2 = t.number("d2", Range::NonNegative);
   z.d3 = t.number("d3", Range::NonNegative);
   z.d4 = t.number("d4", Range::NonNegative);
+  z.fitted_rpm_min = t.optional_number("fitted_rpm_min", Range::NonNegative).value_or(0);
+  z.fitted_rpm_max = t.optional_number("fitted_rpm_max", Range::NonNegative).value_or(0);
+  z.fitted_mrr_min_mm3_s =
+      t.optional_number("fitted_mrr_min_mm3_s", Range::NonNegative).value_or(0);
+  z.fitted_mrr_max_mm3_s =
+      t.optional_number("fitted_mrr_max_mm3_s", Range::NonNegative).value_or(0);
+  if (z.fitted_rpm_max > 0 && z.fitted_rpm_max < z.fitted_rpm_min)
+    t.fail("fitted_rpm_max", "must not be below fitted_rpm_min");
+  if (z.fitted_mrr_max_mm3_s > 0 && z.fitted_mrr_max_mm3_s < z.fitted_mrr_min_mm3_s)
+    t.fail("fitted_mrr_max_mm3_s", "must not be below fitted_mrr_min_mm3_s");
   t.finish();
   return z;
+}
+
+// [power.profile_material]: a material of the profile's own, with its specific cutting energy
+// (kc_j_mm3, with an optional range) or Kienzle's constants (kc11_n_mm2, mc), and its source.
+Material read_material(TableReader t, std::vector<std::string>& sources) {
+  Material m;
+  read_source(t, "power.profile_material", sources);
+  m.name = t.string("name");
+  if (m.name.empty()) t.fail("name", "must not be empty");
+  m.source = "machine profile";
+  m.kc11_n_mm2 = t.optional_number("kc11_n_mm2", Range::Positive).value_or(0);
+  m.mc = t.optional_number("mc", Range::NonNegative).value_or(0);
+  const auto kc = t.optional_number("kc_j_mm3", Range::Positive);
+  if (!kc && !(m.kc11_n_mm2 > 0)) t.fail("kc_j_mm3", "give kc_j_mm3, or kc11_n_mm2 and mc");
+  // Without a unit power, Kienzle's at a 0.1 mm chip stands for it.
+  m.kc_j_mm3 = kc ? *kc : 1e-3 * m.kc11_n_mm2 * std::pow(0.1, -m.mc);
+  m.kc_min_j_mm3 = t.optional_number("kc_min_j_mm3", Range::Positive).value_or(m.kc_j_mm3);
+  m.kc_max_j_mm3 = t.optional_number("kc_max_j_mm3", Range::Positive).value_or(m.kc_j_mm3);
+  t.finish();
+  return m;
+}
+
+std::vector<std::pair<double, double>> read_power_curve(TableReader& t, std::string_view key) {
+  std::vector<std::pair<double, double>> curve;
+  const toml::node* node = t.raw(key);
+  if (!node) return curve;
+  const toml::array* list = node->as_array();
+  if (!list) t.fail(key, "expected an array of [rpm, watts] pairs");
+  for (const toml::node& item : *list) {
+    const toml::array* pair = item.as_array();
+    if (!pair || pair->size() != 2 || !(*pair)[0].is_number() || !(*pair)[1].is_number())
+      t.fail(key, "expected [rpm, watts] pairs, e.g. [[1000, 3000], [8000, 7500]]");
+    const double rpm = *(*pair)[0].value<double>(), w = *(*pair)[1].value<double>();
+    if (!(rpm >= 0) || !(w > 0) || !std::isfinite(rpm) || !std::isfinite(w))
+      t.fail(key, "speeds must be >= 0 and powers > 0");
+    if (!curve.empty() && rpm <= curve.back().first)
+      t.fail(key, "speeds must increase from pair to pair");
+    curve.emplace_back(rpm, w);
+  }
+  return curve;
 }
 
 } // namespace
@@ -59,9 +110,40 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   if (auto pav =
           needs_pavanaskar ? std::optional(t.table("pavanaskar")) : t.optional_table("pavanaskar"))
     p.pavanaskar = read_pavanaskar(*pav, sources);
+  // The cutting term: fitted (the Zhou table's c3, c4) or from the workpiece material.
+  const std::string cutting =
+      t.optional_string("cutting_term").value_or("fitted") == "material" ? "material" : "fitted";
+  if (auto raw = t.optional_string("cutting_term"); raw && *raw != "fitted" && *raw != "material")
+    t.fail("cutting_term", "must be \"fitted\" or \"material\"");
+  p.cutting_term = cutting == "material" ? CuttingTerm::Material : CuttingTerm::Fitted;
+  if (p.cutting_term == CuttingTerm::Material && p.model == PowerModel::Pavanaskar)
+    t.fail("cutting_term", "the pavanaskar model has its own cutting constants per axis");
+  p.cutting_efficiency =
+      t.optional_number("cutting_efficiency", Range::Positive).value_or(p.cutting_efficiency);
+  if (p.cutting_efficiency > 1) t.fail("cutting_efficiency", "must be at most 1");
+  if (auto material = t.optional_table("profile_material"))
+    p.profile_material = read_material(*material, sources);
+  p.material = t.optional_string("material")
+                   .value_or(p.profile_material ? p.profile_material->name : std::string());
+  if (!p.material.empty() && !find_material(p.material) &&
+      !(p.profile_material && p.profile_material->name == p.material))
+    t.fail("material", "\"" + p.material + "\" is not a material ncjoule knows (docs/models.md)");
+  if (p.cutting_term == CuttingTerm::Material && p.material.empty())
+    t.fail("material", "the material cutting term needs a default material");
+  if (const auto rated = t.optional_quantity("spindle_rated", Dimension::Power, Range::Positive))
+    p.spindle_rated_w = *rated;
+  p.spindle_power_curve = read_power_curve(t, "spindle_power_curve_rpm_w");
   if (auto zhou = needs_zhou ? std::optional(t.table("zhou")) : t.optional_table("zhou"))
     p.zhou = read_zhou(*zhou, sources);
   t.finish();
+  if (p.model != PowerModel::Pavanaskar && p.cutting_term == CuttingTerm::Fitted)
+    p.cutting_source = "fitted: " + (sources.empty() ? std::string() : sources.back());
+  if (p.cutting_term == CuttingTerm::Material) {
+    const Material m = p.profile_material && p.profile_material->name == p.material
+                           ? *p.profile_material
+                           : *find_material(p.material);
+    p = with_material(p, m);
+  }
   return p;
 }
 

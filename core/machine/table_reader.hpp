@@ -36,6 +36,9 @@ public:
   // One of the given words (case-sensitive); the error lists them.
   std::string choice(std::string_view key, std::initializer_list<std::string_view> words);
 
+  // The value itself (marked as read), for shapes the readers above do not cover; null when
+  // missing.
+  const toml::node* raw(std::string_view key) { return find(key); }
   TableReader table(std::string_view key);
   std::optional<TableReader> optional_table(std::string_view key);
 

@@ -2,6 +2,7 @@
 // A 3-axis tool only ever removes material above its lower envelope, so a column loses the tops
 // of its intervals and never splits one: its interval list only shrinks, in place.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -47,6 +48,18 @@ public:
     return intervals_.capacity() * sizeof(ZInterval) + first_.capacity() * sizeof(std::uint32_t) +
            count_.capacity() * sizeof(std::uint16_t) +
            (top_.capacity() + tile_top_.capacity()) * sizeof(double);
+  }
+
+  bool material_at(const Point3& p) const override {
+    const int i = int(std::floor((p.x - grid_.x0) / grid_.dx));
+    const int j = int(std::floor((p.y - grid_.y0) / grid_.dy));
+    if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return false;
+    const std::size_t c = std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i);
+    for (std::uint32_t k = 0; k < count_[c]; ++k) {
+      const ZInterval& iv = intervals_[first_[c] + k];
+      if (p.z > iv.lo && p.z < iv.hi) return true;
+    }
+    return false;
   }
 
   double material_volume_mm3() const override {

@@ -205,6 +205,21 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     if (!is_move(cmd.kind)) continue;
     const auto tool = tools_.find(cmd.state.tool);
     if (tool == tools_.end()) continue;
+    if (!first_move_checked_) {
+      // A program that starts with its tool in the material: the stock, the work offset or the
+      // start point is wrong, and the first moves would cut where nothing can.
+      first_move_checked_ = true;
+      const Point3 at{cmd.start.x, cmd.start.y, cmd.start.z};
+      if (engine_->material_at(at)) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "the program's first move starts inside the stock (X%.3f Y%.3f Z%.3f mm): "
+                      "check the stock, the work offset and the start point",
+                      at.x, at.y, at.z);
+        totals_.diagnostics.push_back(
+            {Severity::Warning, options_.source_path, tc.line + 1, 0, text});
+      }
+    }
     if (tc.samples.size() < 2 && !warned_no_samples_ && move_length(cmd) > 0) {
       warned_no_samples_ = true;
       totals_.diagnostics.push_back({Severity::Note, options_.source_path, tc.line + 1, 0,

@@ -63,6 +63,8 @@ std::optional<Tool> make_tool(const ToolFields& f, std::string* error) {
   if (f.tip_diameter_mm) tool.tip_diameter_mm = *f.tip_diameter_mm;
   if (f.flute_length_mm) tool.cutting_length_mm = *f.flute_length_mm;
   if (f.shank_diameter_mm) tool.shank_diameter_mm = *f.shank_diameter_mm;
+  if (f.flutes < 0 || f.flutes > 100) return fail("flutes: must be from 1 to 100 (0: unknown)");
+  tool.flutes = f.flutes;
   tool.description =
       f.description.empty() ? std::string(tool_shape_name(tool.shape)) : f.description;
   if (const std::string problem = tool_problem(tool); !problem.empty())

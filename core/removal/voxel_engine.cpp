@@ -61,6 +61,19 @@ public:
     return voxels_.capacity() + (centre_.capacity() + height_.capacity()) * sizeof(double);
   }
 
+  bool material_at(const Point3& p) const override {
+    const int i = int(std::floor((p.x - grid_.x0) / grid_.dx));
+    const int j = int(std::floor((p.y - grid_.y0) / grid_.dy));
+    if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return false;
+    const std::size_t c = std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i);
+    double z = grid_.z0;
+    for (int k = 0; k < nz_; ++k) {
+      if (p.z >= z && p.z < z + height_[k]) return voxels_[c * std::size_t(nz_) + std::size_t(k)];
+      z += height_[k];
+    }
+    return false;
+  }
+
   double material_volume_mm3() const override {
     double layers = 0; // sum of the heights of the material voxels
     for (std::size_t c = 0; c < grid_.columns(); ++c)

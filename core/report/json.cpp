@@ -79,6 +79,7 @@ void write_block(JsonWriter& w, const LineSummary& b, const Estimate& e) {
   w.field("power_w", b.time_s > 0 ? b.energy_j / b.time_s : 0.0);
   w.field("power_peak_w", b.power_peak_w);
   w.field("energy_j", b.energy_j);
+  if (b.spindle_load > 0) w.field("spindle_load", b.spindle_load);
   write_components(w, b.components_j);
   if (b.note > 0 && b.note <= e.notes.size()) {
     w.key("notes");
@@ -120,6 +121,8 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
   w.field("name", machine.name);
   w.field("file", machine.source_path);
   w.field("power_model", energy.model_description);
+  w.field("cutting_term", e.power.cutting_source);
+  if (!e.power.material.empty()) w.field("material", e.power.material);
   w.end_object();
   w.field("dialect", e.dialect.name);
   w.field("dialect_origin", origin_name(e.dialect_origin));

@@ -207,3 +207,35 @@ TEST_CASE("[default_tool]: types and sizes are checked like every other key") {
       "default_tool.diameter_mm");
   check_names_file_and_key(refusal(with_line("dialect", "dialect = \"okuma\"")), "dialect");
 }
+
+TEST_CASE("[power]: cutting term, material, efficiency and spindle rating are read and checked") {
+  const MachineProfile generic = load_profile(sample_path("generic-3axis.toml"));
+  CHECK(generic.power.cutting_term == CuttingTerm::Material);
+  CHECK(generic.power.material == "aluminium-alloy");
+  CHECK(generic.power.spindle_rated_w == doctest::Approx(5500));
+  // The material's k_c over the efficiency, in Zhou's form (kW per mm^3/s, c4 = 0).
+  CHECK(generic.power.zhou.c3 ==
+        doctest::Approx(find_material("aluminium-alloy")->kc_j_mm3 / 1000 / 0.8));
+  CHECK(generic.power.zhou.c4 == 0);
+  CHECK(generic.power.cutting_source.find("Kalpakjian") != std::string::npos);
+  const MachineProfile zhou = load_profile(sample_path("zhou2017-anziani2025.toml"));
+  CHECK(zhou.power.cutting_term == CuttingTerm::Fitted);
+  CHECK(zhou.power.zhou.fitted_rpm_min == 500);
+  CHECK(zhou.power.zhou.fitted_mrr_max_mm3_s == 48);
+  CHECK(zhou.power.zhou.c4 == doctest::Approx(1.13));
+
+  check_names_file_and_key(refusal(with_line("material", "material = \"unobtainium\"")),
+                           "power.material");
+  check_names_file_and_key(refusal(with_line("cutting_efficiency", "cutting_efficiency = 1.5")),
+                           "power.cutting_efficiency");
+  check_names_file_and_key(refusal(with_line("cutting_term", "cutting_term = \"magic\"")),
+                           "power.cutting_term");
+  // A curve of rated power against speed.
+  const MachineProfile curve = parse_profile(
+      with_line("spindle_rated_w", "spindle_power_curve_rpm_w = [[1000, 2000], [6000, 5500]]"),
+      "c.toml");
+  CHECK(rated_spindle_power_w(curve.power, 3500) == doctest::Approx(3750));
+  check_names_file_and_key(
+      refusal(with_line("spindle_rated_w", "spindle_power_curve_rpm_w = [[6000, 1], [1000, 2]]")),
+      "power.spindle_power_curve_rpm_w");
+}

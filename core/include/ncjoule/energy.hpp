@@ -28,6 +28,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -76,6 +77,9 @@ struct OperatingPoint {
   std::array<double, 3> cut_share{};       // |d_i| / sum |d_j| while cutting, else 0
   double mrr_mm3_s = 0;
   double tool_change = 0; // 1 while a tool change runs
+  // The cutting term's factor for the chip thickness (Kienzle's k_c(h) / k_c), 1 where no
+  // correction applies.
+  double cutting_factor = 1;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -186,6 +190,9 @@ struct EnergyOptions {
   std::optional<double> co2_kg_per_kwh; // overrides the profile's value
   std::optional<double> price_per_kwh;
   std::optional<std::string> currency;
+  // Flutes of each tool (by the number moves carry), where known: with a material that has
+  // Kienzle's constants, the chip thickness (feed per tooth) corrects the cutting term.
+  std::map<int, int> flutes;
 };
 
 struct CommandEnergy {
@@ -198,6 +205,9 @@ struct CommandEnergy {
   double removed_mm3 = 0;
   double sec_j_mm3 = 0; // energy / removed volume, 0 when nothing was removed
   ComponentValues components_j{};
+  // The highest cutting power at the spindle (cutting component times the cutting efficiency)
+  // over the spindle's rated power at that speed; 0 when the profile gives no rating.
+  double spindle_load = 0;
 };
 
 struct EnergyResult {
@@ -234,13 +244,22 @@ public:
                           const OperatingSegment* first, const OperatingSegment* last,
                           double removed_mm3);
   // The totals (no per-command list); `program_duration_s` > 0 replaces the sum of durations.
+  // Its diagnostics say where the cutting term was used outside the speeds and removal rates
+  // its constants were fitted on (once per program).
   EnergyResult totals(double program_duration_s = 0) const;
 
 private:
+  void correct_for_chip_thickness(const CanonCommand& command, OperatingSegment* first,
+                                  OperatingSegment* last) const;
+  void note_cutting(const OperatingPoint& point);
+
   const PowerConstants& constants_;
   EnergyOptions options_;
   double previous_rpm_ = 0;
   EnergyResult totals_;
+  // Where the cutting term was used: speeds and removal rates while cutting.
+  double cut_rpm_min_ = 0, cut_rpm_max_ = 0, cut_mrr_min_ = 0, cut_mrr_max_ = 0;
+  bool cut_seen_ = false;
 };
 
 // Integrates power over every step of every command (trapezoid rule, MRR per step = step

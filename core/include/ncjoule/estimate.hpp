@@ -39,6 +39,9 @@ struct EstimateOptions {
   std::map<int, Tool> tools;
   // The tool of moves that select and describe none; empty: the machine profile's.
   std::optional<Tool> default_tool;
+  // The workpiece material (material.hpp); empty: the machine profile's. It sets the cutting
+  // term of profiles whose cutting term is the material's.
+  std::string material;
   // Called now and then with the fraction done (0 to 1) on the calling thread, e.g. for a
   // progress bar; may be empty.
   std::function<void(double fraction)> progress;
@@ -49,13 +52,15 @@ struct EstimateOptions {
 
 // A job file (TOML) says what a program is cut from and with:
 //   stock = "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX"   (mm; or an .stl path)   or   stock_stl = "x.stl"
+//   material = "aluminium-alloy"                  (the workpiece: material.hpp)
 //   [[tool]]  number = 1, type = "flat" | "ball" | "bullnose" | "drill" | "chamfer",
 //             diameter_mm, corner_radius_mm, point_angle_deg, tip_diameter_mm,
-//             flute_length_mm, shank_diameter_mm
+//             flute_length_mm, shank_diameter_mm, flutes
 // Paths are relative to the job file's folder.
 struct JobFile {
   std::string path;
   std::optional<StockSpec> stock; // empty: the job gives none
+  std::string material;           // empty: the job names none
   std::map<int, Tool> tools;
 };
 // Parses the text of a job file that lives at `path`. Errors (file, line, column, key and what
@@ -110,6 +115,7 @@ struct LineSummary {
   float peak_speed_mm_s = 0;
   float mrr_peak_mm3_s = 0;
   float power_peak_w = 0;
+  float spindle_load = 0; // highest cutting power at the spindle / its rating (0: no rating)
   std::array<float, kPowerComponentCount> components_j{}; // add up to energy_j (to float)
 };
 
@@ -183,6 +189,7 @@ struct Estimate {
   std::map<int, Tool> tools;            // by the number moves carry; 0: moves with none selected
   std::vector<int> unsimulated_tools;   // tools moves use that nothing describes (no removal)
   std::optional<RemovalResult> removal; // totals, stock and grid; empty when not simulated
+  PowerConstants power;                 // the constants used (the profile's, with the material)
   EnergyResult energy;                  // totals and components (no per-command list)
   std::vector<OperationSummary> operations;
   std::vector<LineSummary> lines; // one per source line that holds code, in file order

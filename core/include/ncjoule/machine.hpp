@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ncjoule/gcode.hpp"
+#include "ncjoule/material.hpp"
 #include "ncjoule/tool.hpp"
 
 namespace ncjoule {
@@ -63,6 +64,16 @@ struct ZhouConstants {
   double c1_kw = 0, c2_kw_per_rpm = 0, c3 = 0, c4 = 0;
   // SEC = d1*n^d2 + d3*n/MRR + d4/MRR (J/mm^3); optional second model.
   double d1 = 0, d2 = 0, d3 = 0, d4 = 0;
+  // The spindle speeds and removal rates the constants were fitted on (0: not declared).
+  // Outside them the model is extrapolated, and a warning says so.
+  double fitted_rpm_min = 0, fitted_rpm_max = 0;
+  double fitted_mrr_min_mm3_s = 0, fitted_mrr_max_mm3_s = 0;
+};
+
+// Where the cutting term of the combined (and Zhou) model comes from.
+enum class CuttingTerm {
+  Fitted,   // Zhou's c3 and c4 as the profile gives them (a machine's fit)
+  Material, // the workpiece material: c3 = k_c / (1000 * efficiency), c4 = 0
 };
 
 enum class PowerModel { Combined, Pavanaskar, Zhou };
@@ -72,10 +83,34 @@ struct PowerConstants {
   PavanaskarConstants pavanaskar;
   ZhouConstants zhou;
   double tool_change_w = 0; // power drawn during a tool change (above tare)
+  CuttingTerm cutting_term = CuttingTerm::Fitted;
+  std::string material; // default workpiece material (material term)
+  std::optional<Material>
+      profile_material; // a material the profile defines ([power.profile_material])
+  std::optional<Material> cutting_material; // the material the cutting term is from (with_material)
+  double cutting_efficiency = 0.8;          // power at the cutting edge / power drawn for it
+  // What the cutting term's constants are, for headers ("fitted: Zhou et al. ... Anziani (2025)",
+  // "material aluminium-alloy: k_c 0.53 J/mm^3, Kalpakjian & Schmid ..."); set on load and by
+  // with_material().
+  std::string cutting_source;
+  // The spindle's rated power (W, at the spindle), and its curve against speed where known
+  // (rpm, W pairs, in increasing rpm); 0 / empty: not given.
+  double spindle_rated_w = 0;
+  std::vector<std::pair<double, double>> spindle_power_curve;
   double co2_kg_per_kwh = 0;
   double price_per_kwh = 0;
   std::string currency = "EUR";
 };
+
+// The rated spindle power at a speed: the curve interpolated (its ends held), else the single
+// rating; 0 when the profile gives none.
+double rated_spindle_power_w(const PowerConstants& power, double rpm);
+
+// The constants with the cutting term taken from `material` (c3 = k_c / (1000 * efficiency),
+// c4 = 0, cutting_source saying so). Models whose cutting term is fitted are returned as they
+// are, and `used` (when given) is set to false.
+PowerConstants with_material(const PowerConstants& power, const Material& material,
+                             bool* used = nullptr);
 
 struct MachineProfile {
   std::string name;

@@ -231,6 +231,8 @@ public:
   // over tiles of its grid, each tile applying the steps that touch it in order, in parallel.
   virtual void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes);
   virtual double material_volume_mm3() const = 0; // what is left
+  // Whether there is material at the point (in the column under it, at its height).
+  virtual bool material_at(const Point3& point) const = 0;
   virtual std::size_t memory_bytes() const = 0;
   virtual const GridFrame& grid() const = 0;
   virtual const EngineStats& stats() const = 0;
@@ -352,7 +354,8 @@ private:
   double sample_step_ = 0;
   RemovalResult totals_; // commands left empty
   bool warned_no_samples_ = false;
-  std::vector<RemovalStep> steps_; // scratch
+  bool first_move_checked_ = false; // the program's first move was checked for starting inside
+  std::vector<RemovalStep> steps_;  // scratch
   std::vector<double> volumes_;
 };
 

@@ -30,6 +30,7 @@ struct Tool {
   double tip_diameter_mm = 0;   // chamfer: diameter of the flat at the tip (0 = pointed)
   double cutting_length_mm = 0; // flute length above the tip; 0 = unknown
   double shank_diameter_mm = 0; // 0 = same as diameter_mm
+  int flutes = 0;               // cutting edges; 0 = unknown
   std::string description;      // as the source wrote it
 
   double radius() const { return diameter_mm / 2; }
@@ -69,6 +70,7 @@ struct ToolFields {
   double diameter_mm = 0;
   std::optional<double> corner_radius_mm, point_angle_deg, tip_diameter_mm;
   std::optional<double> flute_length_mm, shank_diameter_mm;
+  int flutes = 0; // 0: unknown
   std::string description;
 };
 // Returns std::nullopt with *error set (naming the field) when the type is unknown or the sizes

@@ -1,0 +1,177 @@
+// Plausible cutting energy on any job: the workpiece materials and their published ranges, the
+// fitted ranges of a machine's fit, the spindle's rating, and a program that starts inside its
+// stock.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "ncjoule/estimate.hpp"
+#include "ncjoule/profile.hpp"
+
+using namespace ncjoule;
+
+namespace {
+
+MachineProfile profile(const std::string& name) {
+  return load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/" + name);
+}
+
+// The standard slot: a 6 mm flat end mill, full width, 3 mm deep, 60 mm long at F600 and the
+// given spindle speed, in a box whose top is Z0.
+std::string slot(double rpm, double feed_mm_min = 600) {
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "G21 G90 G17\n(T1 D=6. CR=0. - ZMIN=-3. - FLAT END MILL)\nT1 M6\nS%.0f M3\n"
+                "G0 X-10 Y0 Z5\nG0 Z-3\nG1 X60 F%.0f\nG0 Z5\nM5\nM30\n",
+                rpm, feed_mm_min);
+  return text;
+}
+
+Estimate run(const std::string& program, const MachineProfile& machine,
+             const std::string& material = "") {
+  EstimateOptions options;
+  options.stock = parse_stock_spec("box:0,-10,-10,50,10,0");
+  options.material = material;
+  return estimate_program(make_source("slot.ngc", program), machine, options);
+}
+
+// Energy of the cutting component per mm^3 removed: what the material tables give.
+double cutting_sec(const Estimate& e) {
+  return e.energy.components_j[std::size_t(PowerComponent::Cutting)] / e.energy.removed_mm3;
+}
+
+bool warned(const Estimate& e, const std::string& text) {
+  for (const Diagnostic& d : e.diagnostics)
+    if (d.severity == Severity::Warning && d.message.find(text) != std::string::npos) return true;
+  return false;
+}
+
+} // namespace
+
+TEST_CASE("every material: a typical value inside its published range, found by its aliases") {
+  REQUIRE(materials().size() >= 12);
+  for (const Material& m : materials()) {
+    CAPTURE(m.name);
+    CHECK(m.kc_min_j_mm3 > 0);
+    CHECK(m.kc_min_j_mm3 <= m.kc_j_mm3);
+    CHECK(m.kc_j_mm3 <= m.kc_max_j_mm3);
+    CHECK_FALSE(m.source.empty());
+    CHECK(find_material(m.name)->name == m.name);
+    for (const std::string& alias : m.aliases)
+      CHECK(find_material(alias)->name == m.name);
+  }
+  CHECK(find_material("Aluminium Alloy")->name == "aluminium-alloy");
+  CHECK(find_material("6061")->name == "aluminium-alloy");
+  CHECK_FALSE(find_material("unobtainium"));
+  // The published figures, at the cutting edge: 0.3-1 J/mm^3 for aluminium alloys,
+  // 1.5-5 for steels.
+  CHECK(find_material("aluminium")->kc_j_mm3 == doctest::Approx(0.53).epsilon(0.05));
+  CHECK(find_material("mild-steel")->kc_j_mm3 > 1.5);
+  CHECK(find_material("mild-steel")->kc_j_mm3 < 5);
+}
+
+TEST_CASE("generic profile, every material: the slot's cutting SEC lies in its published range") {
+  const MachineProfile generic = profile("generic-3axis.toml");
+  REQUIRE(generic.power.cutting_term == CuttingTerm::Material);
+  for (const Material& m : materials()) {
+    CAPTURE(m.name);
+    const Estimate e = run(slot(8000), generic, m.name);
+    REQUIRE(e.energy.removed_mm3 == doctest::Approx(6 * 3 * 50).epsilon(0.01));
+    // Power drawn for cutting: k_c at the edge over the drive's efficiency; at the edge it is
+    // inside the material's range whatever the spindle speed.
+    const double at_edge = cutting_sec(e) * generic.power.cutting_efficiency;
+    CHECK(at_edge >= m.kc_min_j_mm3 * (1 - 1e-6));
+    CHECK(at_edge <= m.kc_max_j_mm3 * (1 + 1e-6));
+    CHECK(e.power.material == m.name);
+  }
+  // The default material is aluminium; at 10,000 rpm it stays an aluminium number (the fitted
+  // Zhou term gave 20-27 J/mm^3 there).
+  const Estimate high = run(slot(10000), generic);
+  CHECK(high.power.material == "aluminium-alloy");
+  CHECK(cutting_sec(high) < 1.5);
+  CHECK(high.energy.peak_power_w < 5000);
+}
+
+TEST_CASE("fitted profiles: the slot inside the fitted range, a warning outside it") {
+  const MachineProfile zhou = profile("zhou2017-anziani2025.toml");
+  REQUIRE(zhou.power.zhou.fitted_rpm_max == 2100);
+  // 150 mm/min: 45 mm^3/s, inside the fit's 3-48 mm^3/s.
+  const Estimate inside = run(slot(1300, 150), zhou);
+  // c3 * 1300^c4 = 2.7 J/mm^3: a metal's figure (0.3 to 9 in the tables).
+  CHECK(cutting_sec(inside) > 0.3);
+  CHECK(cutting_sec(inside) < 9);
+  CHECK_FALSE(warned(inside, "fitted on"));
+  const Estimate outside = run(slot(8000), zhou);
+  CHECK(warned(outside, "fitted on 500-2100 rpm"));
+  CHECK(warned(outside, "3.8x outside"));
+  // A material does not replace a machine's fit; asking for one says so.
+  const Estimate asked = run(slot(1300, 150), zhou, "brass");
+  CHECK(warned(asked, "not used"));
+  CHECK(cutting_sec(asked) == doctest::Approx(cutting_sec(inside)));
+
+  // Pavanaskar's Haas: its cut lines were measured on aluminium 6061; their energy per mm^3 (KB,
+  // the slope of power against MRR) lies in aluminium's range.
+  const MachineProfile haas = profile("haas-vf0-pavanaskar2014.toml");
+  const Material al = *find_material("aluminium-alloy");
+  for (double kb : haas.power.pavanaskar.cut_kb_w_per_mm3_s) {
+    CHECK(kb >= al.kc_min_j_mm3);
+    CHECK(kb <= al.kc_max_j_mm3 / 0.8);
+  }
+  const Estimate pav = run(slot(5500), haas);
+  CHECK(cutting_sec(pav) > 0);
+}
+
+TEST_CASE("a cut asking the spindle for more than its rating is flagged on its block") {
+  MachineProfile small = profile("generic-3axis.toml");
+  small.power.spindle_rated_w = 200; // a hobby spindle
+  const Estimate e = run(slot(8000), small, "mild-steel");
+  CHECK(warned(e, "more than its rated power"));
+  bool flagged = false;
+  for (const LineSummary& b : e.lines)
+    flagged |= b.line == 6 && b.spindle_load > 1;
+  CHECK(flagged);
+  // A curve: rated power against speed, interpolated, ends held.
+  PowerConstants p;
+  p.spindle_power_curve = {{1000, 1000}, {5000, 5000}};
+  CHECK(rated_spindle_power_w(p, 3000) == doctest::Approx(3000));
+  CHECK(rated_spindle_power_w(p, 500) == doctest::Approx(1000));
+  CHECK(rated_spindle_power_w(p, 9000) == doctest::Approx(5000));
+}
+
+TEST_CASE("a program whose first move starts inside the stock is warned about") {
+  const MachineProfile generic = profile("generic-3axis.toml");
+  // The stock's top is at Z5 here: the program starts (at Z0) inside it.
+  EstimateOptions options;
+  options.stock = parse_stock_spec("box:-20,-20,-10,80,20,5");
+  const Estimate e = estimate_program(make_source("inside.ngc", slot(8000)), generic, options);
+  CHECK(warned(e, "starts inside the stock"));
+  CHECK_FALSE(warned(run(slot(8000), generic), "starts inside the stock"));
+}
+
+TEST_CASE("with flutes known, a material with Kienzle's constants corrects for chip thickness") {
+  MachineProfile generic = profile("generic-3axis.toml");
+  Material steel;
+  steel.name = "test-steel";
+  steel.kc11_n_mm2 = 1800;
+  steel.mc = 0.25;
+  steel.kc_j_mm3 = 1e-3 * 1800 * std::pow(0.1, -0.25); // at 0.1 mm
+  steel.kc_min_j_mm3 = steel.kc_max_j_mm3 = steel.kc_j_mm3;
+  steel.source = "test";
+  generic.power.profile_material = steel;
+  generic.power.material = "test-steel";
+  EstimateOptions options;
+  options.stock = parse_stock_spec("box:0,-10,-10,50,10,0");
+  // 600 mm/min at 1000 rpm with 2 flutes: 0.3 mm per tooth, a thicker chip than 0.1 mm, so less
+  // energy per mm^3: (0.3 / 0.1)^-0.25 = 0.76.
+  const std::string program = slot(1000);
+  const Estimate plain = estimate_program(make_source("s.ngc", program), generic, options);
+  Tool t1;
+  t1.number = 1;
+  t1.diameter_mm = 6;
+  t1.flutes = 2;
+  t1.description = "flat end mill, 2 flutes";
+  options.tools[1] = t1;
+  const Estimate corrected = estimate_program(make_source("s.ngc", program), generic, options);
+  CHECK(cutting_sec(corrected) / cutting_sec(plain) ==
+        doctest::Approx(std::pow(3.0, -0.25)).epsilon(1e-3));
+}

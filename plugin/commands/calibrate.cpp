@@ -94,8 +94,13 @@ struct Calibration {
   void use(const FitReport& fit, const std::string& file, const std::string& how = "") {
     print_report(fit);
     apply_fit(constants, fit);
-    for (const FittedConstant& c : fit.constants)
-      if (!c.held) notes[c.parameter] = note_for(fit, c, file + how);
+    for (const FittedConstant& c : fit.constants) {
+      if (c.held) continue;
+      notes[c.parameter] = note_for(fit, c, file + how);
+      // A fitted cutting term is what cuts from now on, not the material's.
+      if (c.parameter == PowerParameter::ZhouC3 || c.parameter == PowerParameter::ZhouC4)
+        constants.cutting_term = CuttingTerm::Fitted;
+    }
     fitted_files.push_back(fit.what + " from " + file);
     fitted_any = true;
   }
@@ -180,8 +185,8 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
   char how[160];
   std::snprintf(how, sizeof how, " (program %s, offset %.3f s, %s loss)", o.program.c_str(),
                 fit.offset_s, o.loss.c_str());
-  calibration.use(fit.report, o.log, how);
   calibration.constants = fit.constants; // the fitted values, and the exponent where held
+  calibration.use(fit.report, o.log, how);
   return kOk;
 }
 
@@ -281,6 +286,7 @@ int run_calibrate(const CalibrateCliOptions& o) {
     if (!t) return kInputError;
     calibration.use(fit_zhou_power(*t), o.zhou);
     calibration.use(fit_zhou_sec(*t), o.zhou);
+    set_zhou_fitted_ranges(constants.zhou, *t);
   }
   if (!o.log.empty()) {
     if (const int status = fit_from_log(o, machine, calibration); status != kOk) return status;

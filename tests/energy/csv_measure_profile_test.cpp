@@ -129,3 +129,56 @@ TEST_CASE("a profile written with fitted constants loads back through the profil
     CHECK(get_parameter(back.power, p) == doctest::Approx(get_parameter(k, p)).epsilon(1e-9));
   }
 }
+
+TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitting does not set") {
+  const std::string path =
+      std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/zhou2017-anziani2025.toml";
+  std::ifstream in(path);
+  REQUIRE(in);
+  std::stringstream base;
+  base << in.rdbuf();
+  MachineProfile original = parse_profile(base.str(), path);
+  // Add the keys a shop would have set: the material term and its own material.
+  std::string text = base.str();
+  const auto at = text.find("[power]\n");
+  REQUIRE(at != std::string::npos);
+  text.insert(at + 8, "cutting_term = \"material\"\nmaterial = \"mild-steel\"\n"
+                      "cutting_efficiency = 0.7\nspindle_rated_w = 7500\n");
+  text += "\n[power.profile_material]\nsource = \"shop table\"\nname = \"house-alloy\"\n"
+          "kc_j_mm3 = 0.9\n";
+  original = parse_profile(text, path);
+  REQUIRE(original.power.cutting_term == CuttingTerm::Material);
+
+  PowerConstants k = original.power;
+  k.zhou.c3 = 1.25e-6; // as a fit would change it
+  std::vector<SteadyStateReading> rows{
+      {1000, 5, 10, 900, 2}, {6000, 5, 40, 2500, 3}, {3000, 5, 0, 600, 4}};
+  set_zhou_fitted_ranges(k.zhou, rows);
+  CHECK(k.zhou.fitted_rpm_min == 1000);
+  CHECK(k.zhou.fitted_rpm_max == 6000);
+  CHECK(k.zhou.fitted_mrr_max_mm3_s == 40);
+
+  std::string error;
+  // A refit of the Pavanaskar terms only: the material term stays.
+  const auto kept = profile_with_power(text, "fitted", original.power, {}, "spindle.csv", error);
+  REQUIRE(kept);
+  const MachineProfile same = parse_profile(*kept, "fitted.toml");
+  CHECK(same.power.cutting_term == CuttingTerm::Material);
+  CHECK(same.power.material == "mild-steel");
+  CHECK(same.power.zhou.c3 == doctest::Approx(original.power.zhou.c3));
+
+  // A Zhou fit: its cutting term is what cuts from now on, the other keys stay.
+  k.cutting_term = CuttingTerm::Fitted;
+  const auto written = profile_with_power(text, "fitted", k, {}, "ncjoule calibrate: z.csv", error);
+  REQUIRE(written);
+  const MachineProfile back = parse_profile(*written, "fitted.toml");
+  CHECK(back.power.cutting_term == CuttingTerm::Fitted);
+  CHECK(back.power.material == "mild-steel");
+  CHECK(back.power.cutting_efficiency == doctest::Approx(0.7));
+  CHECK(back.power.spindle_rated_w == doctest::Approx(7500));
+  REQUIRE(back.power.profile_material);
+  CHECK(back.power.profile_material->name == "house-alloy");
+  CHECK(back.power.zhou.c3 == doctest::Approx(1.25e-6));
+  CHECK(back.power.zhou.fitted_rpm_min == doctest::Approx(1000));
+  CHECK(back.power.zhou.fitted_mrr_max_mm3_s == doctest::Approx(40));
+}

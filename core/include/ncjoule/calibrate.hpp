@@ -98,6 +98,9 @@ FitReport fit_axis_cut(const std::vector<SteadyStateReading>& readings, Axis axi
 FitReport fit_zhou_power(const std::vector<SteadyStateReading>& readings);
 // Zhou's SEC model on SEC = P / MRR of the same readings (rows with MRR > 0), all >= 0.
 FitReport fit_zhou_sec(const std::vector<SteadyStateReading>& readings);
+// The spindle speeds and removal rates the Zhou fit saw (cutting rows only), so estimates
+// outside them are warned about as extrapolation.
+void set_zhou_fitted_ranges(ZhouConstants& zhou, const std::vector<SteadyStateReading>& readings);
 
 // ---------------------------------------------------------------------------------------------
 // Power logs

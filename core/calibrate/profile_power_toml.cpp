@@ -29,11 +29,61 @@ std::string quoted(std::string_view s) {
   return out + "\"";
 }
 
-} // namespace
+// Keys of the base profile's [power] tables that fitting does not produce (cutting_term,
+// material, spindle_rated_w, the fitted ranges, [power.profile_material], ...), as TOML lines
+// for the section they belong to: a calibrated profile keeps them.
+struct KeptPowerKeys {
+  std::string power;  // lines for [power]
+  std::string zhou;   // lines for [power.zhou]
+  std::string tables; // whole [power.*] tables other than pavanaskar and zhou
+};
+
+std::string toml_lines(const toml::table& t) {
+  if (t.empty()) return "";
+  std::ostringstream out;
+  out << toml::toml_formatter(t) << "\n";
+  return out.str();
+}
+
+KeptPowerKeys kept_power_keys(const toml::table* power) {
+  KeptPowerKeys kept;
+  if (!power) return kept;
+  toml::table top, zhou, tables;
+  for (const auto& [key, node] : *power) {
+    const std::string k(key.str());
+    // Quantities may carry their unit in the key (tool_change_w, c1_kw): all spellings go.
+    if (k == "source" || k == "model" || k.rfind("tool_change", 0) == 0 || k == "cutting_term" ||
+        k == "co2_kg_per_kwh" || k == "price_per_kwh" || k == "currency" || k == "pavanaskar")
+      continue;
+    if (k == "zhou") {
+      if (const auto* z = node.as_table())
+        for (const auto& [zkey, znode] : *z) {
+          const std::string zk(zkey.str());
+          const bool written = zk == "source" || zk.rfind("fitted_", 0) == 0 ||
+                               (zk.size() >= 2 && (zk[0] == 'c' || zk[0] == 'd') && zk[1] >= '1' &&
+                                zk[1] <= '4' && (zk.size() == 2 || zk[2] == '_'));
+          if (!written) zhou.insert_or_assign(zkey, znode);
+        }
+      continue;
+    }
+    if (node.is_table())
+      tables.insert_or_assign(key, node);
+    else
+      top.insert_or_assign(key, node);
+  }
+  kept.power = toml_lines(top);
+  kept.zhou = toml_lines(zhou);
+  if (!tables.empty()) {
+    toml::table wrapped;
+    wrapped.insert_or_assign("power", tables);
+    kept.tables = "\n" + toml_lines(wrapped);
+  }
+  return kept;
+}
 
 std::string power_section_toml(const PowerConstants& k,
                                const std::map<PowerParameter, std::string>& notes,
-                               const std::string& source) {
+                               const std::string& source, const KeptPowerKeys& kept) {
   std::ostringstream out;
   auto line = [&](PP p) {
     const std::string key(parameter_info(p).key);
@@ -48,9 +98,13 @@ std::string power_section_toml(const PowerConstants& k,
   out << "[power]\n" << source_line;
   out << "model = " << quoted(model_name(k.model)) << "  # combined | pavanaskar | zhou\n";
   line(PP::ToolChange);
+  out << "cutting_term = "
+      << quoted(k.cutting_term == CuttingTerm::Material ? "material" : "fitted")
+      << "  # fitted: c3, c4 of [power.zhou]; material: the workpiece's k_c\n";
   out << "co2_kg_per_kwh = " << number(k.co2_kg_per_kwh) << "\n";
   out << "price_per_kwh = " << number(k.price_per_kwh) << "\n";
   out << "currency = " << quoted(k.currency) << "\n";
+  out << kept.power;
   out << "\n[power.pavanaskar]\n" << source_line;
   for (PP p : {PP::Tare, PP::Coolant, PP::SpindleKA, PP::SpindleKB})
     line(p);
@@ -64,7 +118,23 @@ std::string power_section_toml(const PowerConstants& k,
   for (PP p : {PP::ZhouC1, PP::ZhouC2, PP::ZhouC3, PP::ZhouC4, PP::ZhouD1, PP::ZhouD2, PP::ZhouD3,
                PP::ZhouD4})
     line(p);
+  const ZhouConstants& z = k.zhou;
+  if (z.fitted_rpm_max > 0) {
+    out << "fitted_rpm_min = " << number(z.fitted_rpm_min) << "  # rpm, the fit's data\n";
+    out << "fitted_rpm_max = " << number(z.fitted_rpm_max) << "  # rpm\n";
+    out << "fitted_mrr_min_mm3_s = " << number(z.fitted_mrr_min_mm3_s) << "\n";
+    out << "fitted_mrr_max_mm3_s = " << number(z.fitted_mrr_max_mm3_s) << "\n";
+  }
+  out << kept.zhou << kept.tables;
   return out.str();
+}
+
+} // namespace
+
+std::string power_section_toml(const PowerConstants& k,
+                               const std::map<PowerParameter, std::string>& notes,
+                               const std::string& source) {
+  return power_section_toml(k, notes, source, KeptPowerKeys{});
 }
 
 std::optional<std::string> profile_with_power(std::string_view base_toml, const std::string& name,
@@ -82,11 +152,13 @@ std::optional<std::string> profile_with_power(std::string_view base_toml, const 
       return std::nullopt;
     }
   }
+  const KeptPowerKeys kept = kept_power_keys(root["power"].as_table());
   root.erase("power");
   if (!name.empty()) root.insert_or_assign("name", name);
   std::ostringstream out;
   // toml++ writes the top-level keys before any table, so the [power] tables can follow.
-  out << toml::toml_formatter(root) << "\n\n" << power_section_toml(constants, notes, power_source);
+  out << toml::toml_formatter(root) << "\n\n"
+      << power_section_toml(constants, notes, power_source, kept);
   return out.str();
 }
 

@@ -1,5 +1,6 @@
 // Fits from steady-state tables: the spindle, axis-motion and cutting lines of Pavanaskar's
 // model, and Zhou's power and SEC models (all coefficients >= 0).
+#include <algorithm>
 #include <cmath>
 
 #include "fit_engine.hpp"
@@ -151,6 +152,22 @@ FitReport fit_zhou_sec(const std::vector<SteadyStateReading>& readings) {
         {{0, 0, r.rpm / r.mrr_mm3_s, 1.0 / r.mrr_mm3_s}, 1.0, r.rpm, r.power_w / r.mrr_mm3_s});
   }
   return fit_power_law_model(problem, {1e-5, 1, 0.1, 100}, 3.0, "Zhou SEC (J/mm^3)");
+}
+
+void set_zhou_fitted_ranges(ZhouConstants& zhou, const std::vector<SteadyStateReading>& readings) {
+  bool any = false;
+  for (const auto& r : readings) {
+    if (!(r.mrr_mm3_s > 0) || !(r.rpm > 0)) continue;
+    if (!any) {
+      zhou.fitted_rpm_min = zhou.fitted_rpm_max = r.rpm;
+      zhou.fitted_mrr_min_mm3_s = zhou.fitted_mrr_max_mm3_s = r.mrr_mm3_s;
+      any = true;
+    }
+    zhou.fitted_rpm_min = std::min(zhou.fitted_rpm_min, r.rpm);
+    zhou.fitted_rpm_max = std::max(zhou.fitted_rpm_max, r.rpm);
+    zhou.fitted_mrr_min_mm3_s = std::min(zhou.fitted_mrr_min_mm3_s, r.mrr_mm3_s);
+    zhou.fitted_mrr_max_mm3_s = std::max(zhou.fitted_mrr_max_mm3_s, r.mrr_mm3_s);
+  }
 }
 
 } // namespace ncjoule

@@ -174,9 +174,10 @@ private:
   Pose g92_;                 // G92 offsets (mm)
   double tool_offset_z_ = 0; // active tool length offset (mm)
   Motion motion_ = Motion::Rapid;
-  bool incremental_ = false;    // G91
-  bool arc_incremental_ = true; // G91.1
-  bool retract_to_r_ = true;    // G99
+  bool incremental_ = false;      // G91
+  bool arc_incremental_ = true;   // G91.1
+  bool retract_to_r_ = true;      // G99
+  double naivecam_tolerance_ = 0; // G64 Q (else P): restored after canned cycles
   int cutter_comp_ = 40;
   int selected_tool_ = 0;
   // Sticky canned-cycle values (program units).

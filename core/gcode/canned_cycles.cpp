@@ -119,7 +119,7 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   if (switch_mode) {
     state_.path_mode = PathMode::ExactPath;
     state_.path_tolerance = 0;
-    emit_simple(CanonKind::PathControl);
+    emit_simple(CanonKind::PathControl, 0, "canned cycle");
   }
   const bool polar = state_.plane == Plane::XY && (v.has('@') || v.has('^'));
   for (int i = 0; i < repeats && !finished_; ++i) {
@@ -223,7 +223,7 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   if (switch_mode) {
     state_.path_mode = saved_mode;
     state_.path_tolerance = saved_tolerance;
-    emit_simple(CanonKind::PathControl, naivecam_tolerance_);
+    emit_simple(CanonKind::PathControl, naivecam_tolerance_, "canned cycle");
   }
 }
 

@@ -118,6 +118,36 @@ ParabolicSpeeds parabolic_speeds(const Segment& a, const Segment& b, bool planni
   return v;
 }
 
+// A parabolic blend as LinuxCNC runs it (tpDoParabolicBlending): from the blend speed V, the
+// first segment slows to rest at its acceleration a1 while the second starts from rest at a2,
+// both at once. Timed here as a junction at speed v, with `overlap` mm of each segment run in
+// parallel with the other:
+//  - a2 < a1: the second lags behind; passing at v = V (1 - sqrt((a1/a2 - 1) / (a1/a2 + 1)))
+//    takes the same time;
+//  - a2 >= a1: their speeds add up to more than V; passing at V over a path shorter by
+//    V^2/2 (1/a1 - 1/a2) takes the same time. LinuxCNC charges the overlap to the faster of the
+//    two, the first until t = V / (a1 + a2): the shortening is shared the same way.
+struct ParabolicJunction {
+  double vel = 0, overlap_prev = 0, overlap_next = 0;
+};
+ParabolicJunction parabolic_junction(const Segment& a, const Segment& b) {
+  ParabolicJunction j;
+  const double v = j.vel = parabolic_speeds(a, b, false).this_vel;
+  const double a1 = a.tangential_accel(), a2 = b.tangential_accel();
+  if (!(a1 > 0) || !(a2 > 0)) return j;
+  if (a2 < a1) {
+    const double ratio = a1 / a2;
+    j.vel = v * (1 - std::sqrt((ratio - 1) / (ratio + 1)));
+    return j;
+  }
+  const double gain_s = v / 2 * (1 / a1 - 1 / a2);
+  const double gain_prev_s = std::min(gain_s, v / (2 * a1) - v / (a1 + a2));
+  // At most a quarter of either segment: the formula holds where both run at V.
+  j.overlap_prev = std::min(v * gain_prev_s, a.length / 4);
+  j.overlap_next = std::min(v * (gain_s - gain_prev_s), b.length / 4);
+  return j;
+}
+
 enum class Choice { None, Parabolic, Tangent, Arc };
 
 // The fastest way through the corner (tpChooseBestBlend): a parabolic blend (rated at half its
@@ -627,8 +657,12 @@ Join join(Segment& prev, Segment& next, const AxisBounds& bounds) {
   }
   finalize_segment(prev);
   if (next.atspeed) set_term(prev, next, Term::Stop); // tcFlagEarlyStop
-  if (prev.term == Term::Parabolic)
-    result.parabolic_vel = parabolic_speeds(prev, next, false).this_vel;
+  if (prev.term == Term::Parabolic) {
+    const ParabolicJunction p = parabolic_junction(prev, next);
+    result.parabolic_vel = p.vel;
+    prev.overlap += p.overlap_prev;
+    next.overlap += p.overlap_next;
+  }
   if (result.blend)
     next.after_tangent = true, result.blend->after_tangent = true;
   else if (prev.term == Term::Tangent)

@@ -39,6 +39,13 @@ inline constexpr double kRampCutoff_s = 0.01;                   // 1 / arc_blend
 inline constexpr double kMinSegmentCycles = 1.02;               // TP_MIN_SEGMENT_CYCLES
 inline constexpr double kBlendDistanceFraction = 0.5;           // BLEND_DIST_FRACTION
 inline constexpr double kToleranceFraction = 0.25;              // tcFindBlendTolerance
+// The tolerance LinuxCNC's canon layer starts with (INIT_CANON): G64 P0.001 inch. The planner
+// starts with none; a canned cycle hands it over when it restores the path mode.
+inline constexpr double kStartupTolerance_mm = 0.0254;
+// The time LinuxCNC's task takes to run a code it waits on (spindle, coolant, offsets, dwell,
+// messages) with the machine at rest, beyond the code's own time: its 1 ms task and I/O cycles
+// (measured: 2.6 to 4.6 ms).
+inline constexpr double kTaskLatency_s = 0.003;
 
 Vec3 operator+(const Vec3& a, const Vec3& b);
 Vec3 operator-(const Vec3& a, const Vec3& b);
@@ -75,12 +82,13 @@ struct Segment {
   double tolerance = 0;                         // G64 P; 0 = none given
   double kink_vel = -1;                         // speed cap at a kink into the next; < 0 none
   double kink_reduce = 0, kink_reduce_prev = 0; // acceleration given up to kinks at either end
-  double planar_vel = 0;                        // per-axis speed bounds used by blends
+  double overlap = 0; // mm run in parallel with a neighbour in parabolic blends: not timed
   Term term = Term::Parabolic;
   bool blend_prev = false; // the segment before blends into this one parabolically
   bool traverse = false;   // G0
   bool rotary = false;     // moves A/B/C: no blend arcs, no tangent runs
-  bool atspeed = false;    // first feed after a spindle start: waits, so cannot be consumed
+  bool atspeed = false;    // first feed after a spindle start: the path stops before it, and
+                           // it is never consumed by a blend
   bool after_tangent = false;
 
   Vec3 start_tangent() const;

@@ -92,19 +92,27 @@ void PathBuilder::move(std::size_t index, const CanonCommand& c) {
   send(MergedLine{c.start, c.end, &c, {Member{index, move_length(c)}}});
 }
 
-void PathBuilder::event(const CanonCommand& c) {
+bool PathBuilder::event(const CanonCommand& c) {
   switch (c.kind) {
   case CanonKind::SetFeedRate:
     if (c.value != feed_rate_) naive_cam_.flush();
     feed_rate_ = c.value;
-    return;
+    return false;
   case CanonKind::SetFeedMode:
     naive_cam_.flush();
-    return;
+    return false;
   case CanonKind::PathControl:
     naive_cam_.flush();
     naive_tolerance_ = c.state.path_mode == PathMode::Continuous ? c.value : 0;
-    return;
+    if (c.text != "canned cycle") {
+      path_mode_programmed_ = true;
+      startup_tolerance_ = false;
+    } else if (!path_mode_programmed_ && c.state.path_mode == PathMode::Continuous) {
+      // A canned cycle restores the mode LinuxCNC's canon layer believes in: before any G61/G64
+      // that is its start-up G64 P0.001 inch, which the planner itself did not have until now.
+      startup_tolerance_ = true;
+    }
+    return false;
   case CanonKind::WorkOffset: {
     // The interpreter only re-sends an unchanged coordinate system; LinuxCNC's does not.
     const int index = static_cast<int>(std::lround(c.value));
@@ -112,20 +120,26 @@ void PathBuilder::event(const CanonCommand& c) {
     if (index == work_index_ && o.x == work_offset_.x && o.y == work_offset_.y &&
         o.z == work_offset_.z && o.a == work_offset_.a && o.b == work_offset_.b &&
         o.c == work_offset_.c)
-      return;
+      return false;
     work_index_ = index;
     work_offset_ = o;
     stop();
-    return;
+    return true;
   }
   case CanonKind::SpindleClockwise:
   case CanonKind::SpindleCounterClockwise:
     stop();
     atspeed_next_feed_ = true;
-    return;
+    return true;
+  case CanonKind::ProgramStop: // the operator's wait, not predicted
+  case CanonKind::OptionalStop:
+  case CanonKind::ProgramEnd:
+    stop();
+    return false;
   default:
-    if (empties_queue(c.kind)) stop();
-    return;
+    if (!empties_queue(c.kind)) return false;
+    stop();
+    return true;
   }
 }
 
@@ -146,17 +160,15 @@ void PathBuilder::queue(Segment&& s, std::vector<Member>&& members) {
     const AxisBounds& bounds = pending_->traverse && s.traverse ? rapid_bounds_ : feed_bounds_;
     Join j = join(*pending_, s, bounds);
     double cap = 0;
-    if (!pending_->atspeed) {
-      switch (pending_->term) {
-      case Term::Tangent:
-        cap = pending_->kink_vel >= 0 ? pending_->kink_vel : kUnlimited;
-        break;
-      case Term::Parabolic:
-        cap = j.parabolic_vel;
-        break;
-      default:
-        break;
-      }
+    switch (pending_->term) {
+    case Term::Tangent:
+      cap = pending_->kink_vel >= 0 ? pending_->kink_vel : kUnlimited;
+      break;
+    case Term::Parabolic:
+      cap = j.parabolic_vel;
+      break;
+    default:
+      break;
     }
     settle(std::move(j.blend), j.consumed, cap);
   }
@@ -189,7 +201,8 @@ void PathBuilder::settle(std::optional<Segment> blend, bool consumed, double exi
 }
 
 std::uint32_t PathBuilder::push(const Segment& s, double exit_cap) {
-  SpeedPlanItem item{s.length, s.target_vel(), s.tangential_accel(), 0, 0};
+  SpeedPlanItem item{std::max(0.0, s.length - s.overlap), s.target_vel(), s.tangential_accel(), 0,
+                     0};
   item.linear_ramp = s.term == Term::Tangent && !s.traverse;
   if (flowing_ && !items_.empty()) {
     SpeedPlanItem& before = items_.back();
@@ -203,7 +216,8 @@ std::uint32_t PathBuilder::push(const Segment& s, double exit_cap) {
 
 void PathBuilder::apply_state(Segment& s, const CanonCommand& c) {
   const ModalState& st = c.state;
-  s.tolerance = st.path_mode == PathMode::Continuous ? st.path_tolerance : 0;
+  if (st.path_mode == PathMode::Continuous)
+    s.tolerance = startup_tolerance_ ? kStartupTolerance_mm : st.path_tolerance;
   if (machine_.exact_stop_every_block || st.path_mode == PathMode::ExactStop)
     s.term = Term::Stop;
   else

@@ -43,7 +43,8 @@ public:
   void move(std::size_t index, const CanonCommand& c);
   // Any other command: a new F, G61/G64 or G93/G94 ends a naive-CAM group; the commands task
   // waits on (spindle, coolant, tool change, dwell, offsets, messages, stops) empty the queue.
-  void event(const CanonCommand& c);
+  // True for those: task runs them with the machine at rest (kTaskLatency_s each).
+  bool event(const CanonCommand& c);
   // The path comes to rest for a reason of ncjoule's own (a probe, a dog-leg rapid).
   void stop();
   // End of the program.
@@ -65,9 +66,11 @@ private:
   AxisBounds feed_bounds_, rapid_bounds_;
   NaiveCam naive_cam_;
   double naive_tolerance_ = 0;
-  double feed_rate_ = -1;          // last F, to see changes
-  bool atspeed_next_feed_ = false; // a spindle start waits for speed at the next feed move
-  int work_index_ = 1;             // G54..G59.3 in force, and its offset
+  bool path_mode_programmed_ = false; // a G61, G61.1 or G64 of the program's own
+  bool startup_tolerance_ = false;    // G64 P0.001 inch, from a canned cycle before any of them
+  double feed_rate_ = -1;             // last F, to see changes
+  bool atspeed_next_feed_ = false;    // a spindle start waits for speed at the next feed move
+  int work_index_ = 1;                // G54..G59.3 in force, and its offset
   Pose work_offset_;
   // The segment waiting for its successor, the lines charged with it, its blend arc in.
   std::optional<Segment> pending_;

@@ -86,6 +86,12 @@ Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& m
       moves[command] =
           MovePlan{MoveTiming::Chained, charge.count, charge.first, charge.begin, charge.end};
     });
+  // LinuxCNC rule: its task takes a few ms to run each code it waits on, with the machine at
+  // rest after the last move (which LinuxCNC charges with that time). Counted only once motion
+  // resumes: after the last move, and before the first, its runs are not timed.
+  std::vector<std::pair<std::size_t, double>> rest_after; // move index -> seconds, in order
+  std::size_t last_move = commands.size();
+  double waiting = 0; // task time of codes since the last move
   MachineEvents events(k);
   MoveLimits previous_limits;
   const CanonCommand* previous_move = nullptr; // last chained move, while the path flows
@@ -100,7 +106,7 @@ Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& m
       out.duration_s = finite_or_zero(e.duration_s, c.line, warnings);
       out.note = std::move(e.note);
       if (e.stops_motion) previous_move = nullptr;
-      if (linuxcnc_path) linuxcnc_path->event(c);
+      if (linuxcnc_path && linuxcnc_path->event(c)) waiting += linuxcnc::kTaskLatency_s;
       continue;
     }
     if (c.kind == CanonKind::Traverse && k.rapid_mode == RapidMode::DogLeg) {
@@ -124,6 +130,9 @@ Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& m
       moves[i].timing = MoveTiming::Chained; // its charge arrives once its segment is settled
       moves[i].count = 0;
       linuxcnc_path->move(i, c);
+      if (waiting > 0 && last_move < commands.size()) rest_after.emplace_back(last_move, waiting);
+      waiting = 0;
+      last_move = i;
       continue;
     }
     if (previous_move)
@@ -141,6 +150,7 @@ Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& m
   plan_speeds(items);
 
   // Pass 3.
+  std::size_t next_rest = 0;
   double clock = 0;
   double path_speed = 0; // speed of the path at the current point (for zero-length moves)
   for (std::size_t i = 0; i < commands.size(); ++i) {
@@ -174,6 +184,11 @@ Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& m
       out.peak_speed_mm_s = span.peak_speed();
       sample_move(c, span, out.length_mm, clock, options, out.samples);
       path_speed = out.exit_speed_mm_s;
+      if (next_rest < rest_after.size() && rest_after[next_rest].first == i) {
+        // The codes after this move run with the machine at rest (LinuxCNC rule).
+        out.duration_s += rest_after[next_rest++].second;
+        out.samples.push_back(MotionSample{clock + out.duration_s, 1.0, c.end, 0.0});
+      }
       break;
     }
     case MoveTiming::RestToRest: {

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 #include <numbers>
 
+#include "linuxcnc_blend.hpp"
 #include "test_helpers.hpp"
 
 using namespace ncjoule;
@@ -113,14 +114,15 @@ TEST_CASE("the path stops between G0 and G1, at reversals, and at codes task wai
   }
 }
 
-TEST_CASE("the first feed after a spindle start waits for speed and ends at rest") {
+TEST_CASE("a spindle start stops the path; the first feed after it starts from rest") {
   const MachineProfile m = linuxcnc_machine();
-  std::vector<CanonCommand> program{event(CanonKind::SpindleClockwise),
-                                    feed(at(0, 0), at(10, 0), 600), feed(at(10, 0), at(20, 1), 600),
-                                    feed(at(20, 1), at(30, 0), 600)};
+  std::vector<CanonCommand> program{
+      feed(at(-10, 0), at(0, 0), 600), event(CanonKind::SpindleClockwise),
+      feed(at(0, 0), at(10, 0), 600), feed(at(10, 0), at(20, 1), 600)};
   const Timeline t = plan(program, m);
-  CHECK(t.commands[1].exit_speed_mm_s == 0);
-  CHECK(t.commands[2].exit_speed_mm_s > 5); // the next ones blend again
+  CHECK(t.commands[0].exit_speed_mm_s == 0);
+  CHECK(t.commands[2].entry_speed_mm_s == 0);
+  CHECK(t.commands[2].exit_speed_mm_s > 5); // it blends into the next one
 }
 
 TEST_CASE("naive CAM (G64 P Q): nearly collinear G1s run as one move, time shared by length") {
@@ -173,4 +175,21 @@ TEST_CASE("blend arcs shorten the timed path, never the programmed one") {
   CHECK(t.commands[1].samples.back().position.y == 50);
   for (const MotionSample& s : t.commands[1].samples)
     CHECK(s.position.x == 50);
+}
+
+TEST_CASE("LinuxCNC's task runs each code it waits on in a few ms, charged to the move before") {
+  const MachineProfile m = linuxcnc_machine();
+  const CanonCommand a = feed(at(0, 0), at(10, 0), 600), b = feed(at(10, 0), at(20, 5), 600);
+  const Timeline plain = plan({a, b}, m);
+  const Timeline coolant = plan({a, event(CanonKind::FloodOn), event(CanonKind::MistOn), b}, m);
+  const double latency = ncjoule::kinematics_detail::linuxcnc::kTaskLatency_s;
+  // Two codes between the moves: the path stops, and task takes its time for each.
+  CHECK(coolant.commands[0].exit_speed_mm_s == 0);
+  const double stopped = plan({a, event(CanonKind::Dwell, 0), b}, m).total_s - latency;
+  CHECK(coolant.total_s == doctest::Approx(stopped + 2 * latency));
+  CHECK(coolant.total_s > plain.total_s);
+  CHECK(coolant.commands[0].samples.back().t_s == doctest::Approx(coolant.commands[0].duration_s));
+  // After the last move (and before the first) the codes are not timed.
+  const Timeline after = plan({a, event(CanonKind::FloodOff)}, m);
+  CHECK(after.total_s == doctest::Approx(plan({a}, m).total_s));
 }

@@ -10,7 +10,8 @@
 #
 # LinuxCNC runs headless through the lcnc-time tool (set LCNC_TIME to its path, or put it on PATH;
 # it needs root and Debian's linuxcnc-uspace) in real time, two programs side by side by default;
-# its results are cached in BUILD/linuxcnc-time, so a second run takes seconds. ncjoule runs on
+# its results are cached in BUILD/linuxcnc-time, so a second run takes seconds. Run it on an idle
+# machine: LinuxCNC skips blends when its task falls behind the motion. ncjoule runs on
 # bench/machines/linuxcnc-sim.toml, the same machine: trivkins XYZ, 1000 mm/s^2, 100 mm/s per axis.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"

@@ -17,7 +17,8 @@
 //  - under G61 the path stops at every corner that is not nearly tangent, and both segments keep
 //    90% of their acceleration (the kink allowance); G61.1 stops everywhere.
 // A segment that is still waiting for its successor is marked for a parabolic blend under G64,
-// and keeps that mark (and a/2) when the queue empties before another move arrives.
+// and keeps that mark (and a/2) when the queue empties before another move arrives. A parabolic
+// blend is timed as a junction speed and a length the two segments run side by side.
 //
 // The rules here work on one pair of segments; linuxcnc_path.cpp feeds them the program.
 #pragma once
@@ -84,12 +85,12 @@ struct Segment {
   double kink_reduce = 0, kink_reduce_prev = 0; // acceleration given up to kinks at either end
   double overlap = 0; // mm run in parallel with a neighbour in parabolic blends: not timed
   Term term = Term::Parabolic;
-  bool blend_prev = false; // the segment before blends into this one parabolically
-  bool traverse = false;   // G0
-  bool rotary = false;     // moves A/B/C: no blend arcs, no tangent runs
-  bool atspeed = false;    // first feed after a spindle start: the path stops before it, and
-                           // it is never consumed by a blend
-  bool after_tangent = false;
+  bool blend_prev = false;    // the segment before blends into this one parabolically
+  bool traverse = false;      // G0
+  bool rotary = false;        // moves A/B/C: no blend arcs, no tangent runs
+  bool atspeed = false;       // first feed after a spindle start: the path stops before it, and
+                              // it is never consumed by a blend
+  bool after_tangent = false; // entered tangentially: held to a length per 1.02 servo cycles
 
   Vec3 start_tangent() const;
   Vec3 end_tangent() const;
@@ -109,15 +110,12 @@ struct AxisBounds {
 struct Join {
   std::optional<Segment> blend; // a blend arc between them, run as a segment of its own
   bool consumed = false;        // what was left of prev is part of the blend arc
-  double parabolic_vel = 0;     // prev->term == Parabolic: speed at which the two overlap
+  double parabolic_vel = 0;     // prev->term == Parabolic: junction speed that times the blend
 };
 
 // Settles the junction between `prev` (waiting in the queue) and `next` (just arrived), as
 // tpAddLine/tpAddCircle do: mode changes, kinks, blend arcs, parabolic blends, early stops.
 // Changes both segments (lengths, ends, marks); `prev` is final afterwards.
 Join join(Segment& prev, Segment& next, const AxisBounds& bounds);
-
-// Settles a segment after which the queue empties (no successor): LinuxCNC's finalisation.
-void finalize(Segment& last);
 
 } // namespace ncjoule::kinematics_detail::linuxcnc

@@ -201,10 +201,9 @@ TEST_CASE("naive CAM takes an XY arc within Q of its chord as two points of a st
   // A 10 mm arc of radius 200 strays 0.0625 mm from its chord: merged with the lines around it.
   CanonCommand flat = arc(at(10, 0), at(20, 0), 15, -199.9375, -1, 1200);
   flat.state.path_tolerance = q;
-  const std::vector<CanonCommand> program{mode, feed(at(0, 0), at(10, 0), 1200,
-                                                     PathMode::Continuous, q),
-                                          flat,
-                                          feed(at(20, 0), at(30, 0), 1200, PathMode::Continuous, q)};
+  const std::vector<CanonCommand> program{
+      mode, feed(at(0, 0), at(10, 0), 1200, PathMode::Continuous, q), flat,
+      feed(at(20, 0), at(30, 0), 1200, PathMode::Continuous, q)};
   const Timeline t = plan(program, linuxcnc_machine());
   // One 30 mm move at 20 mm/s, at a/2 throughout (the last move queued keeps its mark).
   CHECK(t.total_s == doctest::Approx(trapezoid_time(0, 0, 20, 30, 500)).epsilon(1e-3));

@@ -33,11 +33,17 @@ ACCEL, VEL = 1000, 100  # mm/s^2, mm/s: lcnc-time's machine and bench/machines/l
 LINE_FLOOR_S = 0.1  # per-line errors are taken over lines longer than this in LinuxCNC
 
 
-def resolve(spec):
+def resolve(spec, cache):
     """'PATH[@LINES]': PATH relative to the repository, 'ncfiles/NAME' in LinuxCNC's nc_files,
-    'corpus/NAME' in $NCJOULE_CORPUS; @LINES keeps the first LINES lines and appends M2."""
+    'corpus/NAME' in $NCJOULE_CORPUS, 'gen/NAME' a program of bench/make_cam_like.py; @LINES
+    keeps the first LINES lines and appends M2."""
     path, _, keep = spec.partition("@")
-    if path.startswith("ncfiles/"):
+    if path.startswith("gen/"):
+        full = os.path.join(cache, path.replace("/", "-") + ".ngc")
+        with open(full, "w") as f:
+            subprocess.run([sys.executable, os.path.join(HERE, "make_cam_like.py"),
+                            path[len("gen/"):]], stdout=f, check=True)
+    elif path.startswith("ncfiles/"):
         full = os.path.join(NC_FILES, path[len("ncfiles/"):])
     elif path.startswith("corpus/"):
         corpus = os.environ.get("NCJOULE_CORPUS")
@@ -168,7 +174,7 @@ def main():
 
     jobs = []
     for spec in specs:
-        name, full, keep = resolve(spec)
+        name, full, keep = resolve(spec, cache)
         text = program_text(full, keep)
         key = hashlib.sha256(f"{ACCEL} {VEL}\n".encode() + text.encode("latin-1")).hexdigest()[:20]
         program = os.path.join(cache, key + ".ngc")

@@ -398,6 +398,7 @@ struct Attempt {
   Segment arc;
   Points points;
   bool consume = false;
+  double line_part = 0;    // what is left of the first segment, run in the arc when consumed
   Circle circle1, circle2; // trimmed circles
 };
 
@@ -411,8 +412,8 @@ bool line_line(Attempt& at, const Segment& prev, const Segment& next, const Axis
   if (!kinematics(g, q, prev, next, bounds) || !compute_parameters(q)) return false;
   at.points.trim1 = at.points.trim2 = q.d_plan;
   at.consume = consumes(prev, q.d_plan, q.v_plan);
-  const double line_part = at.consume ? prev.length - q.d_plan : 0;
-  at.arc = make_arc(prev, next, q, q.s_arc + line_part);
+  at.line_part = at.consume ? prev.length - q.d_plan : 0;
+  at.arc = make_arc(prev, next, q, q.s_arc + at.line_part);
   return true;
 }
 
@@ -448,8 +449,8 @@ bool line_arc(Attempt& at, const Segment& prev, const Segment& next, const AxisB
   BlendArc arc;
   const Vec3 arc_start = prev.start + (prev.length - at.points.trim1) * prev.direction;
   if (!arc_from_points(arc, arc_start, at.circle2.point(0), centre)) return false;
-  const double line_part = at.consume ? prev.length - at.points.trim1 : 0;
-  at.arc = make_arc(prev, next, q, arc.radius * arc.angle + line_part);
+  at.line_part = at.consume ? prev.length - at.points.trim1 : 0;
+  at.arc = make_arc(prev, next, q, arc.radius * arc.angle + at.line_part);
   return tangent_ok(at.circle2, arc, g.binormal, q, true);
 }
 
@@ -653,6 +654,7 @@ Join join(Segment& prev, Segment& next, const AxisBounds& bounds) {
       apply_arc(prev, next, at);
       result.blend = at.arc;
       result.consumed = at.consume;
+      result.consumed_length = at.line_part;
     }
   }
   finalize_segment(prev);

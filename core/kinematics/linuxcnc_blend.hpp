@@ -110,6 +110,7 @@ struct AxisBounds {
 struct Join {
   std::optional<Segment> blend; // a blend arc between them, run as a segment of its own
   bool consumed = false;        // what was left of prev is part of the blend arc
+  double consumed_length = 0;   // its length, at the start of the blend arc
   double parabolic_vel = 0;     // prev->term == Parabolic: junction speed that times the blend
 };
 

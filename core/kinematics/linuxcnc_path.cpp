@@ -145,7 +145,7 @@ bool PathBuilder::event(const CanonCommand& c) {
 
 void PathBuilder::stop() {
   naive_cam_.flush();
-  if (pending_) settle(std::nullopt, false, 0); // never finalised: LinuxCNC does not either
+  if (pending_) settle(std::nullopt, false, 0, 0); // never finalised: LinuxCNC does not either
   flowing_ = false;
 }
 
@@ -170,33 +170,55 @@ void PathBuilder::queue(Segment&& s, std::vector<Member>&& members) {
     default:
       break;
     }
-    settle(std::move(j.blend), j.consumed, cap);
+    settle(std::move(j.blend), j.consumed, j.consumed_length, cap);
   }
   pending_ = std::move(s);
   pending_members_ = std::move(members);
 }
 
-void PathBuilder::settle(std::optional<Segment> blend, bool consumed, double exit_cap) {
+void PathBuilder::settle(std::optional<Segment> blend, bool consumed, double consumed_length,
+                         double exit_cap) {
+  // The items this move is charged with: its blend arc in (less what of it ran the move before),
+  // and its own segment, or, when a blend consumed what was left of it, the part of the next
+  // blend arc that runs that rest (LinuxCNC lists such a move with no time at all).
   Charge charge;
   charge.first = pending_arc_in_ ? *pending_arc_in_ : static_cast<std::uint32_t>(items_.size());
   charge.count = pending_arc_in_ ? 1 : 0;
+  const double begin = pending_arc_in_ ? arc_in_skip_ : 0;
+  double end = pending_arc_in_ ? items_[*pending_arc_in_].length : 0;
   if (!consumed) {
-    push(*pending_, exit_cap);
+    end += items_[push(*pending_, exit_cap)].length;
     ++charge.count;
   }
+  pending_arc_in_.reset();
+  arc_in_skip_ = 0;
+  if (blend) {
+    pending_arc_in_ = push(*blend, kUnlimited);
+    if (consumed) {
+      end += consumed_length;
+      arc_in_skip_ = consumed_length;
+      ++charge.count;
+    }
+  }
   double total = 0;
+  for (std::uint32_t i = 0; i < charge.count; ++i)
+    total += items_[charge.first + i].length;
+  double members = 0;
   for (const Member& m : pending_members_)
-    total += m.length;
+    members += m.length;
+  // Each line's share, in proportion to its length, of the stretch [begin, end].
+  auto fraction = [&](double at) {
+    return total > 0 ? static_cast<float>(std::clamp(at / total, 0.0, 1.0)) : 0.0f;
+  };
   double done = 0;
   for (const Member& m : pending_members_) {
-    charge.begin = total > 0 ? static_cast<float>(done / total) : 0.0f;
+    const double from = members > 0 ? done / members : 0;
     done += m.length;
-    charge.end = total > 0 ? static_cast<float>(done / total) : 1.0f;
-    if (&m == &pending_members_.back()) charge.end = 1;
+    const double to = members > 0 && &m != &pending_members_.back() ? done / members : 1;
+    charge.begin = fraction(begin + (end - begin) * from);
+    charge.end = fraction(begin + (end - begin) * to);
     sink_(m.command, charge);
   }
-  pending_arc_in_.reset();
-  if (blend) pending_arc_in_ = push(*blend, kUnlimited);
   pending_.reset();
 }
 

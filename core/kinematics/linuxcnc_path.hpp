@@ -6,7 +6,9 @@
 // once the move after it has arrived or the queue empties, so memory does not grow with the
 // program. Each move command is then told which items it is charged with:
 //  - its own segment, and the blend arc before it (LinuxCNC charges a blend arc to the line it
-//    leads into), or only that arc when a blend consumed what was left of the move;
+//    leads into); when a blend consumed what was left of the move, the part of that blend arc
+//    that runs the rest instead of its own segment (LinuxCNC charges all of the arc to the next
+//    line, leaving the move with no time);
 //  - a share of the merged segment, in proportion to length, when several G1s were merged
 //    (LinuxCNC reports all of it on the last one; sharing keeps time and energy on every line
 //    that removes material).
@@ -53,7 +55,7 @@ public:
 private:
   void send(MergedLine&& line); // a straight move as the planner receives it
   void queue(Segment&& s, std::vector<Member>&& members);
-  void settle(std::optional<Segment> blend, bool consumed, double exit_cap);
+  void settle(std::optional<Segment> blend, bool consumed, double consumed_length, double exit_cap);
   std::uint32_t push(const Segment& s, double exit_cap);
   Segment line_segment(const CanonCommand& state_from, const Pose& start, const Pose& end) const;
   Segment circle_segment(const CanonCommand& c) const;
@@ -76,8 +78,9 @@ private:
   std::optional<Segment> pending_;
   std::vector<Member> pending_members_;
   std::optional<std::uint32_t> pending_arc_in_;
-  bool flowing_ = false; // the last item written runs on into the next one
-  double exit_cap_ = 0;  // its own limit at that junction
+  double arc_in_skip_ = 0; // mm at the start of that arc that run the move before
+  bool flowing_ = false;   // the last item written runs on into the next one
+  double exit_cap_ = 0;    // its own limit at that junction
 };
 
 } // namespace ncjoule::kinematics_detail::linuxcnc

@@ -209,3 +209,26 @@ TEST_CASE("naive CAM takes an XY arc within Q of its chord as two points of a st
   CHECK(t.total_s == doctest::Approx(trapezoid_time(0, 0, 20, 30, 500)).epsilon(1e-3));
   CHECK(t.commands[2].duration_s == doctest::Approx(10.0 / 20).epsilon(1e-2));
 }
+
+TEST_CASE("a move whose rest runs in the next blend arc keeps that part of the arc's time") {
+  // 0.15 mm moves at F3000 turning by a degree or two: the last few servo cycles of each move
+  // run in the blend arc after it. LinuxCNC lists such a move with no time; ncjoule charges it
+  // the part of the arc that runs its rest, so that every line that cuts has a time.
+  std::vector<CanonCommand> program;
+  Pose p = at(0, 0);
+  for (int i = 0; i < 200; ++i) {
+    const double heading = 0.03 * std::sin((i / 2) * 0.7); // pairs of collinear moves
+    const Pose q = at(p.x + 0.15 * std::cos(heading), p.y + 0.15 * std::sin(heading));
+    program.push_back(feed(p, q, 3000));
+    p = q;
+  }
+  const Timeline t = plan(program, linuxcnc_machine());
+  double sum = 0;
+  for (const TimedCommand& c : t.commands) {
+    CHECK(c.duration_s > 0);
+    sum += c.duration_s;
+  }
+  CHECK(sum == doctest::Approx(t.total_s));
+  // At 50 mm/s the middle moves take about their length over the feed.
+  CHECK(t.commands[100].duration_s == doctest::Approx(0.15 / 50).epsilon(0.2));
+}

@@ -21,7 +21,7 @@ python3 "$here/make_synthetic.py" "$blocks" > "$program"
 for machine in generic-3axis haas-vf0-pavanaskar2014; do
   log="$work/$machine.log"
   # Stage times are log lines; read them from both streams, wherever the logger writes.
-  "$ncjoule" -v estimate "$program" --machine "$root/samples/machines/$machine.toml" \
+  "$ncjoule" -v estimate "$program" --no-removal --machine "$root/samples/machines/$machine.toml" \
     > "$log" 2>&1
   python3 - "$log" "$machine" <<'PY'
 import re, sys

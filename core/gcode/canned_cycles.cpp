@@ -111,6 +111,16 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
     traverse(a, b, r);
     height = r;
   }
+  // The cycle's own moves run in exact-path mode (G61), as LinuxCNC's interpreter runs them:
+  // the path stops at every corner of the cycle. The mode in force comes back afterwards.
+  const PathMode saved_mode = state_.path_mode;
+  const double saved_tolerance = state_.path_tolerance;
+  const bool switch_mode = saved_mode != PathMode::ExactPath;
+  if (switch_mode) {
+    state_.path_mode = PathMode::ExactPath;
+    state_.path_tolerance = 0;
+    emit_simple(CanonKind::PathControl, 0, "canned cycle");
+  }
   const bool polar = state_.plane == Plane::XY && (v.has('@') || v.has('^'));
   for (int i = 0; i < repeats && !finished_; ++i) {
     if (polar) {
@@ -209,6 +219,11 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       break;
     }
     height = clear;
+  }
+  if (switch_mode) {
+    state_.path_mode = saved_mode;
+    state_.path_tolerance = saved_tolerance;
+    emit_simple(CanonKind::PathControl, naivecam_tolerance_, "canned cycle");
   }
 }
 

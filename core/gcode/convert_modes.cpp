@@ -95,7 +95,9 @@ void Interpreter::convert_path_control(const BlockValues& v) {
     } else if (code == 640) {
       state_.path_mode = PathMode::Continuous;
       state_.path_tolerance = v.has('p') ? *v['p'] * unit() : 0;
-      emit_simple(CanonKind::PathControl);
+      // value: LinuxCNC's naive-CAM tolerance, Q, else P, else none (SET_NAIVECAM_TOLERANCE).
+      naivecam_tolerance_ = v.has('q') ? *v['q'] * unit() : state_.path_tolerance;
+      emit_simple(CanonKind::PathControl, naivecam_tolerance_);
     }
   }
 }

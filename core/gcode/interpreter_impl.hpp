@@ -212,9 +212,10 @@ private:
   // The G0/G1/G2/G3 mode in force when the current canned cycle (or G80) began: what moves axis
   // words after G80 where canned cycles are a modal group of their own (Dialect).
   Motion motion_before_cycle_ = Motion::Rapid;
-  bool incremental_ = false;    // G91
-  bool arc_incremental_ = true; // G91.1
-  bool retract_to_r_ = true;    // G99
+  bool incremental_ = false;      // G91
+  bool arc_incremental_ = true;   // G91.1
+  bool retract_to_r_ = true;      // G99
+  double naivecam_tolerance_ = 0; // G64 Q (else P): restored after canned cycles
   int cutter_comp_ = 40;
   bool arc_offsets_reversed_ = false;          // I/J/K read from the centre to the start
   std::size_t arcs_fitting_only_standard_ = 0; // I/J/K arcs that fit only the standard way

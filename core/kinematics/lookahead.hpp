@@ -14,6 +14,7 @@ struct SpeedPlanItem {
   double accel = 0;
   double jerk = 0;
   double junction_after = 0; // highest speed at the junction with the next item; 0 = stop there
+  bool linear_ramp = false;  // LinuxCNC rule: a ramp from entry to exit speed if it is short
   // Results.
   double entry = 0;
   double exit = 0;

@@ -53,7 +53,15 @@ EventTiming MachineEvents::time(const CanonCommand& c) {
   case CanonKind::ProgramEnd:
     e.stops_motion = true;
     break;
-  default: // state changes (feed, plane, offsets, coolant, comments): instantaneous, blended over
+  case CanonKind::MistOn:
+  case CanonKind::MistOff:
+  case CanonKind::FloodOn:
+  case CanonKind::FloodOff:
+    // grbl (coolant_sync) and LinuxCNC (task waits for motion before coolant commands) switch
+    // coolant with the machine at rest; Pavanaskar's analyzer ("next-feed") looked only at moves.
+    e.stops_motion = machine_.junction_rule != JunctionRule::NextFeed;
+    break;
+  default: // state changes (feed, plane, offsets, comments): instantaneous, blended over
     break;
   }
   return e;

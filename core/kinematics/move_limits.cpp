@@ -160,7 +160,7 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
   if (!std::isfinite(caps.accel)) caps.accel = fallback.accel_mm_s2;
   m.jerk = std::isfinite(caps.jerk) ? caps.jerk : 0;
   m.accel = caps.accel;
-  m.vmax = caps.speed;
+  m.vmax = m.vmax_machine = caps.speed;
   if (!rapid) {
     const double programmed = programmed_speed(move, m.length, warnings);
     if (programmed > 0 && std::isfinite(programmed)) {

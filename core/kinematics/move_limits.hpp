@@ -17,11 +17,12 @@ inline double dot(const Vec3& a, const Vec3& b) {
 }
 
 struct MoveLimits {
-  double length = 0;    // mm along the path; degrees for a move of rotary axes only
-  double vmax = 0;      // path speed cap (mm/s or deg/s)
-  double accel = 0;     // path acceleration cap
-  double jerk = 0;      // path jerk cap; 0 = none (trapezoid)
-  Vec3 dir_in, dir_out; // unit tangents of the linear axes at the start and end
+  double length = 0;       // mm along the path; degrees for a move of rotary axes only
+  double vmax = 0;         // path speed cap (mm/s or deg/s)
+  double vmax_machine = 0; // the same without the programmed feed: what the axes allow
+  double accel = 0;        // path acceleration cap
+  double jerk = 0;         // path jerk cap; 0 = none (trapezoid)
+  Vec3 dir_in, dir_out;    // unit tangents of the linear axes at the start and end
   bool rotary_only = false;
 };
 

@@ -16,7 +16,7 @@ std::size_t intervals(double extent, double step) {
 
 } // namespace
 
-void sample_move(const CanonCommand& move, const VelocityProfile& profile, double spatial_length,
+void sample_move(const CanonCommand& move, const TimedSpan& profile, double spatial_length,
                  double start_s, const PlanOptions& options, std::vector<MotionSample>& out) {
   const double length = profile.length();
   const double duration = profile.duration();

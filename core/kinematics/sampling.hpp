@@ -7,13 +7,15 @@
 
 #include "dog_leg.hpp"
 #include "ncjoule/kinematics.hpp"
-#include "velocity_profile.hpp"
+#include "timed_span.hpp"
 
 namespace ncjoule::kinematics_detail {
 
 // `spatial_length` is the move's length in mm (0 for moves of rotary axes only, which are
-// sampled in time only).
-void sample_move(const CanonCommand& move, const VelocityProfile& profile, double spatial_length,
+// sampled in time only). The programmed path is laid onto the timed stretch in proportion to
+// distance: where blend arcs shorten the timed path, a sample's position stays on the
+// programmed path and its time is the one of the same fraction of the stretch.
+void sample_move(const CanonCommand& move, const TimedSpan& profile, double spatial_length,
                  double start_s, const PlanOptions& options, std::vector<MotionSample>& out);
 
 void sample_dog_leg(const CanonCommand& move, const DogLegMove& dog_leg, double start_s,

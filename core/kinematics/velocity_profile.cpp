@@ -97,6 +97,22 @@ VelocityProfile VelocityProfile::build(double v0, double v1, double vmax, double
   return p;
 }
 
+VelocityProfile VelocityProfile::ramp(double v0, double v1, double length) {
+  VelocityProfile p;
+  v0 = std::max(0.0, v0);
+  v1 = std::max(0.0, v1);
+  p.entry_ = v0;
+  p.exit_ = v1;
+  p.peak_ = std::max(v0, v1);
+  p.end_v_ = v0;
+  if (!(length > 0) || !(v0 + v1 > 0)) return p;
+  p.length_ = length;
+  p.add((v1 * v1 - v0 * v0) / (2 * length), 0, 2 * length / (v0 + v1));
+  p.end_s_ = length;
+  p.end_v_ = v1;
+  return p;
+}
+
 void VelocityProfile::add(double a0, double jerk, double duration) {
   if (!(duration > 0)) return;
   pieces_[count_++] = Piece{duration_, end_s_, end_v_, a0, jerk, duration};

@@ -23,6 +23,9 @@ public:
   // look-ahead guarantees), never faster than vmax. jerk <= 0 gives a trapezoid.
   static VelocityProfile build(double v0, double v1, double vmax, double length, double accel,
                                double jerk);
+  // Constant acceleration from v0 to v1 over `length`, whatever the acceleration limit: the
+  // linear speed ramp LinuxCNC gives segments that take less than a few servo cycles.
+  static VelocityProfile ramp(double v0, double v1, double length);
   // Rest-to-rest convenience.
   static VelocityProfile rest_to_rest(double vmax, double length, double accel, double jerk) {
     return build(0, 0, vmax, length, accel, jerk);

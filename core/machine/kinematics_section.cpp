@@ -29,9 +29,10 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   k.feed_profile = t.choice("feed_profile", {"trapezoid", "s-curve"}) == "trapezoid"
                        ? FeedProfile::Trapezoid
                        : FeedProfile::SCurve;
-  k.junction_rule = t.choice("junction_rule", {"tolerance", "next-feed"}) == "tolerance"
-                        ? JunctionRule::Tolerance
-                        : JunctionRule::NextFeed;
+  const std::string rule = t.choice("junction_rule", {"tolerance", "next-feed", "linuxcnc-2.9"});
+  k.junction_rule = rule == "tolerance"   ? JunctionRule::Tolerance
+                    : rule == "next-feed" ? JunctionRule::NextFeed
+                                          : JunctionRule::LinuxCnc29;
   k.path_tolerance_mm = t.quantity("path_tolerance", Dimension::Length, Range::NonNegative);
   k.exact_stop_every_block = t.boolean("exact_stop_every_block");
   k.tool_change_s = t.quantity("tool_change", Dimension::Time, Range::NonNegative);
@@ -46,6 +47,9 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
         t.fail(std::string(names[i]) + ".jerk_mm_s3",
                "feed_profile \"s-curve\" needs a jerk limit greater than zero on every axis");
   }
+  if (k.junction_rule == JunctionRule::LinuxCnc29 && k.feed_profile == FeedProfile::SCurve)
+    t.fail("feed_profile", "junction_rule \"linuxcnc-2.9\" plans trapezoids, as LinuxCNC 2.9 "
+                           "does (it has no jerk limit): use feed_profile = \"trapezoid\"");
   if (auto rotary = t.optional_table("rotary")) {
     k.rotary_rapid_deg_s = rotary->quantity("rapid", Dimension::AngularSpeed, Range::Positive);
     k.rotary_accel_deg_s2 = rotary->quantity("accel", Dimension::AngularAccel, Range::Positive);

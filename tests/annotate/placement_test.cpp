@@ -171,6 +171,8 @@ TEST_CASE("a block's numbers are the estimate's, and CUM is the time when it end
     CHECK(field_value(line, "P") == doctest::Approx(s.energy_j / s.time_s).epsilon(0.006));
     CHECK(field_value(line, "CUM") == doctest::Approx(cumulative).epsilon(0.006));
   }
-  // G1 Z-1 F60 over 6 mm takes at least 6 s.
-  CHECK(field_value(after[2], "T") >= 6.0);
+  // G1 Z-1 F60 over 6 mm at 1 mm/s, less the 0.51 mm the blend arc into G1 X100 takes from its
+  // end (LinuxCNC's rule, which the generic profile uses, charges that arc to the next line).
+  CHECK(field_value(after[2], "T") >= 5.45);
+  CHECK(field_value(after[2], "T") <= 6.0);
 }

@@ -27,12 +27,18 @@ TEST_CASE("LinuxCNC's nc_files plan with finite, non-negative block times") {
     InterpreterOptions options;
     options.max_commands = 2'000'000;
     const Toolpath toolpath = interpret(make_source(entry.path().string(), text.str()), options);
-    for (const MachineProfile& machine : {test::round_machine(), [] {
+    for (const MachineProfile& machine : {test::round_machine(),
+                                          [] {
                                             MachineProfile m = test::round_machine();
                                             m.kinematics.rapid_mode = RapidMode::DogLeg;
                                             m.kinematics.feed_profile = FeedProfile::SCurve;
                                             for (AxisLimits& a : m.kinematics.axes)
                                               a.jerk_mm_s3 = 10000;
+                                            return m;
+                                          }(),
+                                          [] {
+                                            MachineProfile m = test::round_machine();
+                                            m.kinematics.junction_rule = JunctionRule::LinuxCnc29;
                                             return m;
                                           }()}) {
       const Timeline t = plan(toolpath.commands, machine);

@@ -37,10 +37,20 @@ TEST_CASE("collinear blocks run through at full feed") {
 
 TEST_CASE("state changes between moves do not stop the path") {
   std::vector<CanonCommand> program{feed(at(0, 0), at(50, 0), 762), event(CanonKind::Comment),
-                                    event(CanonKind::FloodOn), feed(at(50, 0), at(100, 0), 762)};
+                                    event(CanonKind::PlaneSelect),
+                                    feed(at(50, 0), at(100, 0), 762)};
   const Timeline t = plan(program, round_machine());
   CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(762.0 / 60));
   CHECK(t.commands[3].entry_speed_mm_s == doctest::Approx(762.0 / 60));
+}
+
+TEST_CASE("coolant codes stop the path (grbl and LinuxCNC), except in Pavanaskar's analyzer") {
+  std::vector<CanonCommand> program{feed(at(0, 0), at(50, 0), 762), event(CanonKind::FloodOn),
+                                    feed(at(50, 0), at(100, 0), 762)};
+  CHECK(plan(program, round_machine()).commands[0].exit_speed_mm_s == 0);
+  MachineProfile analyzer = round_machine();
+  analyzer.kinematics.junction_rule = JunctionRule::NextFeed;
+  CHECK(plan(program, analyzer).commands[0].exit_speed_mm_s == doctest::Approx(762.0 / 60));
 }
 
 TEST_CASE("a dwell between collinear moves stops the path") {
@@ -135,8 +145,8 @@ TEST_CASE("forward pass: a chain of short blocks accelerates as one") {
 TEST_CASE("a line running tangentially into an arc keeps its speed, in XY and in XZ") {
   const double f = 1200, v = f / 60;
   // G17: +X into a counter-clockwise quarter circle around (10, 5).
-  const Timeline xy = plan(
-      {feed(at(0, 0), at(10, 0), f), arc(at(10, 0), at(15, 5), 10, 5, 1, f)}, round_machine());
+  const Timeline xy =
+      plan({feed(at(0, 0), at(10, 0), f), arc(at(10, 0), at(15, 5), 10, 5, 1, f)}, round_machine());
   CHECK(xy.commands[0].exit_speed_mm_s == doctest::Approx(v));
 
   // G18 (first axis Z, second X): +X into a clockwise quarter circle around z=5, x=10.

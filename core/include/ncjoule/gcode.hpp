@@ -195,7 +195,8 @@ enum class CanonKind : std::uint8_t {
   FloodOff,
   LengthUnits,      // state.inch
   PlaneSelect,      // state.plane
-  PathControl,      // state.path_mode, state.path_tolerance
+  PathControl,      // state.path_mode, state.path_tolerance; value = G64 Q (else P, else 0);
+                    // text = "canned cycle" around the moves of a canned cycle
   ToolLengthOffset, // end.z = offset (mm)
   WorkOffset,       // value = index (1 = G54 ... 9 = G59.3), end = offset (mm)
   AxisOffset,       // G92: end = offset (mm)

@@ -31,7 +31,9 @@ enum class FeedProfile { Trapezoid, SCurve }; // velocity profile per block
 //             within the tolerance of the corner, taken at the acceleration limit).
 //  NextFeed:  Pavanaskar's analyzer: each block slows only to the next block's feed, whatever
 //             the angle.
-enum class JunctionRule { Tolerance, NextFeed };
+//  LinuxCnc29: LinuxCNC 2.9's trajectory planner: blend arcs that shorten the path, its G64
+//             tolerances, its full stops and its servo-cycle limits (docs/machine-profiles.md).
+enum class JunctionRule { Tolerance, NextFeed, LinuxCnc29 };
 
 struct Kinematics {
   std::array<AxisLimits, 3> axes; // X, Y, Z

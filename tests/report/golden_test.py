@@ -81,7 +81,10 @@ blocks = {b["line"]: b for b in doc["blocks"]}
 ops = {op["name"]: op for op in doc["operations"]}
 kwh = doc["energy_j"] / 3.6e6
 
-check(list(ops) == ["Facing", "Drilling"], f"operations named after the post's comments: {list(ops)}")
+check(list(ops) == ["Facing", "Pocket 40 x 20, corner radius 8, depth 6 in two steps", "Drilling"], f"operations named after the post's comments: {list(ops)}")
+# Passes at Y3..57 with a 12 mm tool cover all of the 100 x 60 stock, 1 mm deep.
+check(abs(ops["Facing"]["removed_mm3"] - 6000) < 0.005 * 6000,
+      f"facing removes 100 x 60 x 1 mm within 0.5% (got {ops['Facing']['removed_mm3']:.1f})")
 check(ops["Facing"]["tool"] == 1 and ops["Drilling"]["tool"] == 2, "T1 then T2")
 check(ops["Facing"]["line"] == 8 and ops["Drilling"]["line"] == 45, "at the T1 M6 and T2 M6 lines")
 for key in ["time_s", "energy_j", "removed_mm3"]:

@@ -156,17 +156,20 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   estimate_detail::ResultFolder folder(source, e.dialect, e.power, folding, removal.get(),
                                        scan.commands, e);
   t = Clock::now();
-  std::vector<CanonCommand> commands;
-  commands.reserve(scan.commands);
+  // Interpret again, plan and fold as one stream: each command goes through as soon as the
+  // planner has timed it, so memory holds the look-ahead window, not the program.
   InterpreterOptions again = interpreter;
   again.dialect = e.dialect; // as the first pass chose it
-  interpret(source, again, [&commands](const CanonCommand& c) { commands.push_back(c); });
-  Timeline timeline = plan(commands, machine, plan_options);
-  add_diagnostics(e, timeline.diagnostics, source.path);
+  std::size_t streamed = 0;
   try {
-    for (TimedCommand& tc : timeline.commands)
-      if (tc.command < commands.size()) folder.take(commands[tc.command], tc);
-    folder.finish(timeline.total_s);
+    Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& timed) {
+      folder.take(c, timed);
+      ++streamed;
+    });
+    interpret(source, again, [&planner](const CanonCommand& c) { planner.add(c); });
+    const double total_s = planner.finish();
+    add_diagnostics(e, planner.take_diagnostics(), source.path);
+    folder.finish(total_s);
   } catch (const std::exception& ex) {
     e.diagnostics.push_back(
         {Severity::Error, source.path, 0, 0, std::string("material removal failed: ") + ex.what()});
@@ -174,7 +177,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     return e;
   }
   if (removal) add_diagnostics(e, removal->summary().diagnostics, source.path);
-  logger().info("stream: {} commands in {:.3f} s", commands.size(), seconds_since(t));
+  logger().info("stream: {} commands in {:.3f} s", streamed, seconds_since(t));
   if (options.progress) options.progress(1);
   return e;
 }

@@ -67,8 +67,7 @@ bool empties_queue(CanonKind kind) {
 
 } // namespace
 
-PathBuilder::PathBuilder(const Kinematics& machine, std::vector<SpeedPlanItem>& items,
-                         ChargeSink sink)
+PathBuilder::PathBuilder(const Kinematics& machine, ItemWindow& items, ChargeSink sink)
     : machine_(machine), items_(items), sink_(std::move(sink)),
       naive_cam_([this](MergedLine&& line) { send(std::move(line)); }) {
   const auto& a = machine.axes;

@@ -39,7 +39,7 @@ struct Charge {
 class PathBuilder {
 public:
   using ChargeSink = std::function<void(std::size_t command, const Charge&)>;
-  PathBuilder(const Kinematics& machine, std::vector<SpeedPlanItem>& items, ChargeSink sink);
+  PathBuilder(const Kinematics& machine, ItemWindow& items, ChargeSink sink);
 
   // A move LinuxCNC's planner queues (G0, G1, G2/G3 with a length).
   void move(std::size_t index, const CanonCommand& c);
@@ -51,6 +51,10 @@ public:
   void stop();
   // End of the program.
   void finish() { stop(); }
+  // The oldest item a move still to be charged may be charged with.
+  std::size_t oldest_item_in_use() const {
+    return pending_arc_in_ ? *pending_arc_in_ : items_.size();
+  }
 
 private:
   void send(MergedLine&& line); // a straight move as the planner receives it
@@ -62,7 +66,7 @@ private:
   void apply_state(Segment& s, const CanonCommand& c);
 
   const Kinematics& machine_;
-  std::vector<SpeedPlanItem>& items_;
+  ItemWindow& items_;
   mutable Warnings scratch_; // plan() has reported the moves' warnings already
   ChargeSink sink_;
   AxisBounds feed_bounds_, rapid_bounds_;

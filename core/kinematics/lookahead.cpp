@@ -6,24 +6,39 @@
 
 namespace ncjoule::kinematics_detail {
 
-void plan_speeds(std::vector<SpeedPlanItem>& items) {
-  const std::size_t n = items.size();
-  // Backward: the fastest each move may enter and still reach the speed the moves after it allow.
+void plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
+  const std::size_t from = front.final_items;
+  const std::size_t end = items.size();
+  if (from >= end) return;
+  // Backward, as if the path stopped after the last item: the fastest each item may enter and
+  // still reach the speed the items after it allow. A later item can only raise these speeds, so
+  // an item whose entry is held by its own cap keeps it whatever follows, and so does everything
+  // before it.
+  std::size_t fixed = from; // the highest such item found, if above `from`
   double next_entry = 0;
-  for (std::size_t i = n; i-- > 0;) {
+  for (std::size_t i = end; i-- > from;) {
     SpeedPlanItem& m = items[i];
     m.exit = std::min(m.junction_after, next_entry);
-    const double entry_limit = i > 0 ? items[i - 1].junction_after : 0.0;
-    m.entry = std::min({entry_limit, m.vmax, reachable_speed(m.exit, m.length, m.accel, m.jerk)});
+    const double cap =
+        std::min(i > from ? items[i - 1].junction_after : front.junction_before, m.vmax);
+    const double reach = reachable_speed(m.exit, m.length, m.accel, m.jerk);
+    m.entry = std::min(cap, reach);
+    if (fixed == from && i > from && cap <= reach) fixed = i;
     next_entry = m.entry;
   }
-  // Forward: no faster than each move can reach from its entry speed.
-  double previous_exit = 0;
-  for (SpeedPlanItem& m : items) {
+  const std::size_t final_end = at_end ? end : fixed;
+  // Forward, over what is final: no faster than each item can reach from its entry speed.
+  double previous_exit = front.exit_before;
+  for (std::size_t i = from; i < final_end; ++i) {
+    SpeedPlanItem& m = items[i];
     m.entry = std::min(m.entry, previous_exit);
     m.exit = std::min({m.exit, m.vmax, reachable_speed(m.entry, m.length, m.accel, m.jerk)});
     previous_exit = m.exit;
   }
+  if (final_end == from) return;
+  front.final_items = final_end;
+  front.junction_before = items[final_end - 1].junction_after;
+  front.exit_before = previous_exit;
 }
 
 } // namespace ncjoule::kinematics_detail

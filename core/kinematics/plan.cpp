@@ -1,12 +1,15 @@
-// plan(): the planner's three passes over the command stream.
-//  1. Limits of every move and timing of every other command, and the junction speed wherever
-//     one move flows into the next. Under the LinuxCNC rule, linuxcnc_path.cpp builds the path
-//     LinuxCNC would run instead (blend arcs, merged moves) and says which part of it each move
-//     is charged with.
-//  2. Look-ahead (lookahead.cpp) over the chain of moves.
-//  3. A velocity profile per move (or per stretch it is charged with), the running clock, and
-//     the sampled path.
+// The planner, as a stream of commands in and timed commands out, in three steps:
+//  1. As a command arrives: the limits of a move and the junction speed wherever one move flows
+//     into the next (under the LinuxCNC rule, linuxcnc_path.cpp builds the path LinuxCNC would
+//     run instead, blend arcs and merged moves, and says which part of it each move is charged
+//     with), or the timing of any other command.
+//  2. Look-ahead (lookahead.cpp) over the moves waiting, which makes their speeds final up to
+//     the last point whose speed nothing later can change.
+//  3. For each command in turn, once its speeds are final: a velocity profile (or one per
+//     stretch it is charged with), the running clock and the sampled path; then it goes out.
+// Memory holds the commands and items between the last timed command and the newest one.
 #include <cmath>
+#include <deque>
 #include <optional>
 
 #include "ncjoule/log.hpp"
@@ -40,8 +43,16 @@ enum class MoveTiming : std::uint8_t {
 struct MovePlan {
   MoveTiming timing = MoveTiming::NotAMove;
   std::uint16_t count = 1;  // Chained: items charged (a blend arc and the move's own segment)
-  std::uint32_t item = 0;   // Chained: index of the first into the look-ahead items
+  std::uint32_t item = 0;   // Chained: number of the first look-ahead item charged
   float begin = 0, end = 1; // Chained: the share of those items' length charged
+  bool charged = true;      // Chained: false until the LinuxCNC path has said what it is charged
+};
+
+// A command between arriving and going out timed.
+struct WaitingCommand {
+  CanonCommand command;
+  TimedCommand timed;
+  MovePlan plan;
 };
 
 // The speed profile of one look-ahead item once its entry and exit speeds are known. Under the
@@ -64,155 +75,265 @@ double finite_or_zero(double value, int line, Warnings& warnings) {
 
 } // namespace
 
-Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& machine,
-              const PlanOptions& options) {
-  const Kinematics& k = machine.kinematics;
-  Warnings warnings;
-  Timeline timeline;
-  timeline.commands.resize(commands.size());
-  std::vector<MovePlan> moves(commands.size());
-  std::vector<SpeedPlanItem> items;
+struct Planner::Impl {
+  Impl(const MachineProfile& machine, const PlanOptions& options, Sink sink);
 
-  // Pass 1.
-  const bool linuxcnc_rule = k.junction_rule == JunctionRule::LinuxCnc29;
+  void add(const CanonCommand& c);
+  double finish();
+
+  void limit_and_chain(WaitingCommand& w);
+  void look_ahead(bool at_end);
+  bool ready(const WaitingCommand& w) const;
+  void time(WaitingCommand& w);
+  void send_ready();
+
+  const Kinematics& k;
+  PlanOptions options;
+  Sink sink;
+  Warnings warnings;
+  ItemWindow items;
+  SpeedPlanFront front;
+  std::size_t next_look_ahead = kLookAheadBatch; // pending items at which to look ahead again
+  std::deque<WaitingCommand> waiting;
+  std::size_t first_waiting = 0; // number of the command at the front of `waiting`
+  std::size_t next_number = 0;   // number the next command gets
+  bool finished = false;
   std::optional<linuxcnc::PathBuilder> linuxcnc_path;
-  if (linuxcnc_rule)
-    linuxcnc_path.emplace(k, items, [&](std::size_t command, const linuxcnc::Charge& charge) {
-      moves[command] =
-          MovePlan{MoveTiming::Chained, charge.count, charge.first, charge.begin, charge.end};
-    });
   // LinuxCNC rule: its task takes a few ms to run each code it waits on, with the machine at
   // rest after the last move (which LinuxCNC charges with that time). Counted only once motion
   // resumes: after the last move, and before the first, its runs are not timed.
-  std::vector<std::pair<std::size_t, double>> rest_after; // move index -> seconds, in order
-  std::size_t last_move = commands.size();
-  double waiting = 0; // task time of codes since the last move
-  MachineEvents events(k);
+  std::deque<std::pair<std::size_t, double>> rest_after; // move number -> seconds, in order
+  std::size_t last_move = kNone;
+  double task_waiting = 0; // task time of codes since the last move
+  MachineEvents events;
   MoveLimits previous_limits;
-  const CanonCommand* previous_move = nullptr; // last chained move, while the path flows
-  for (std::size_t i = 0; i < commands.size(); ++i) {
-    const CanonCommand& c = commands[i];
-    TimedCommand& out = timeline.commands[i];
-    out.command = i;
-    out.line = c.line;
-    out.kind = c.kind;
-    if (!is_move(c.kind)) {
-      EventTiming e = events.time(c);
-      out.duration_s = finite_or_zero(e.duration_s, c.line, warnings);
-      out.note = std::move(e.note);
-      if (e.stops_motion) previous_move = nullptr;
-      if (linuxcnc_path && linuxcnc_path->event(c)) waiting += linuxcnc::kTaskLatency_s;
-      continue;
-    }
-    if (c.kind == CanonKind::Traverse && k.rapid_mode == RapidMode::DogLeg) {
-      moves[i].timing = MoveTiming::DogLeg;
-      previous_move = nullptr;
-      if (linuxcnc_path) linuxcnc_path->stop();
-      continue;
-    }
-    const MoveLimits limits = move_limits(c, k, warnings);
-    if (!(limits.length > kMinMoveLength)) {
-      moves[i].timing = MoveTiming::Point;
-      continue;
-    }
-    if (c.kind == CanonKind::Probe) {
-      moves[i].timing = MoveTiming::RestToRest;
-      previous_move = nullptr;
-      if (linuxcnc_path) linuxcnc_path->stop();
-      continue;
-    }
-    if (linuxcnc_path) {
-      moves[i].timing = MoveTiming::Chained; // its charge arrives once its segment is settled
-      moves[i].count = 0;
-      linuxcnc_path->move(i, c);
-      if (waiting > 0 && last_move < commands.size()) rest_after.emplace_back(last_move, waiting);
-      waiting = 0;
-      last_move = i;
-      continue;
-    }
-    if (previous_move)
-      items.back().junction_after =
-          junction_speed(previous_limits, limits, previous_move->state.path_mode,
-                         previous_move->state.path_tolerance, k);
-    moves[i] = MovePlan{MoveTiming::Chained, 1, static_cast<std::uint32_t>(items.size())};
-    items.push_back(SpeedPlanItem{limits.length, limits.vmax, limits.accel, limits.jerk});
-    previous_limits = limits;
-    previous_move = &c;
-  }
-  if (linuxcnc_path) linuxcnc_path->finish();
-
-  // Pass 2.
-  plan_speeds(items);
-
-  // Pass 3.
-  std::size_t next_rest = 0;
+  bool previous_flows = false; // the last chained move flows into the next one
+  PathMode previous_mode = PathMode::ExactPath;
+  double previous_tolerance = 0;
+  // Step 3's running state.
   double clock = 0;
   double path_speed = 0; // speed of the path at the current point (for zero-length moves)
-  for (std::size_t i = 0; i < commands.size(); ++i) {
-    const CanonCommand& c = commands[i];
-    TimedCommand& out = timeline.commands[i];
-    out.start_s = clock;
-    switch (moves[i].timing) {
-    case MoveTiming::NotAMove:
-      if (out.duration_s > 0 || c.kind == CanonKind::ProgramStop ||
-          c.kind == CanonKind::OptionalStop || c.kind == CanonKind::ProgramEnd)
-        path_speed = 0;
-      break;
-    case MoveTiming::Point: {
-      out.entry_speed_mm_s = out.exit_speed_mm_s = out.peak_speed_mm_s = path_speed;
-      const TimedSpan still(VelocityProfile::build(path_speed, path_speed, 0, 0, 1, 0));
-      sample_move(c, still, 0, clock, options, out.samples);
-      break;
-    }
-    case MoveTiming::Chained: {
-      const MovePlan& plan = moves[i];
-      TimedSpan span;
-      for (std::uint32_t j = 0; j < plan.count; ++j)
-        span.add(item_profile(items[plan.item + j]));
-      if (plan.count == 0) // run as part of the next move's blend arc
-        span.add(VelocityProfile::build(path_speed, path_speed, 0, 0, 1, 0));
-      if (plan.begin > 0 || plan.end < 1) span.restrict(plan.begin, plan.end);
-      out.duration_s = finite_or_zero(span.duration(), c.line, warnings);
-      out.length_mm = move_length(c);
-      out.entry_speed_mm_s = span.entry_speed();
-      out.exit_speed_mm_s = span.exit_speed();
-      out.peak_speed_mm_s = span.peak_speed();
-      sample_move(c, span, out.length_mm, clock, options, out.samples);
-      path_speed = out.exit_speed_mm_s;
-      if (next_rest < rest_after.size() && rest_after[next_rest].first == i) {
-        // The codes after this move run with the machine at rest (LinuxCNC rule).
-        out.duration_s += rest_after[next_rest++].second;
-        out.samples.push_back(MotionSample{clock + out.duration_s, 1.0, c.end, 0.0});
-      }
-      break;
-    }
-    case MoveTiming::RestToRest: {
-      const MoveLimits limits = move_limits(c, k, warnings);
-      const VelocityProfile profile =
-          VelocityProfile::rest_to_rest(limits.vmax, limits.length, limits.accel, limits.jerk);
-      out.duration_s = finite_or_zero(profile.duration(), c.line, warnings);
-      out.length_mm = limits.rotary_only ? 0 : limits.length;
-      out.peak_speed_mm_s = profile.peak_speed();
-      sample_move(c, TimedSpan(profile), out.length_mm, clock, options, out.samples);
-      path_speed = 0;
-      break;
-    }
-    case MoveTiming::DogLeg: {
-      const DogLegMove dog_leg(c, k);
-      out.duration_s = finite_or_zero(dog_leg.duration(), c.line, warnings);
-      out.length_mm = move_length(c);
-      out.peak_speed_mm_s = dog_leg.peak_speed();
-      sample_dog_leg(c, dog_leg, clock, options, out.samples);
-      path_speed = 0;
-      break;
-    }
-    }
-    clock += out.duration_s;
+
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  static constexpr std::size_t kLookAheadBatch = 64;
+};
+
+Planner::Impl::Impl(const MachineProfile& machine, const PlanOptions& o, Sink s)
+    : k(machine.kinematics), options(o), sink(std::move(s)), events(machine.kinematics) {
+  if (k.junction_rule == JunctionRule::LinuxCnc29)
+    linuxcnc_path.emplace(k, items, [this](std::size_t command, const linuxcnc::Charge& charge) {
+      waiting[command - first_waiting].plan =
+          MovePlan{MoveTiming::Chained, charge.count, charge.first, charge.begin, charge.end, true};
+    });
+}
+
+void Planner::Impl::add(const CanonCommand& c) {
+  waiting.push_back(WaitingCommand{c, TimedCommand{}, MovePlan{}});
+  WaitingCommand& w = waiting.back();
+  w.timed.command = next_number++;
+  w.timed.line = c.line;
+  w.timed.kind = c.kind;
+  limit_and_chain(w);
+  if (!options.look_ahead_whole_program && items.size() - front.final_items >= next_look_ahead) {
+    const std::size_t before = front.final_items;
+    look_ahead(false);
+    // A long stretch with no fixed point: look again only once it has doubled, so that the
+    // work stays linear in the program.
+    const std::size_t pending = items.size() - front.final_items;
+    next_look_ahead =
+        front.final_items > before ? kLookAheadBatch : std::max(kLookAheadBatch, 2 * pending);
   }
-  timeline.total_s = clock;
-  timeline.diagnostics = warnings.take();
-  logger().debug("planned {} commands ({} chained moves): {:.3f} s", commands.size(), items.size(),
+  send_ready();
+}
+
+// Step 1 for one command.
+void Planner::Impl::limit_and_chain(WaitingCommand& w) {
+  const CanonCommand& c = w.command;
+  const std::size_t i = w.timed.command;
+  if (!is_move(c.kind)) {
+    EventTiming e = events.time(c);
+    w.timed.duration_s = finite_or_zero(e.duration_s, c.line, warnings);
+    w.timed.note = std::move(e.note);
+    if (e.stops_motion) previous_flows = false;
+    if (linuxcnc_path && linuxcnc_path->event(c)) task_waiting += linuxcnc::kTaskLatency_s;
+    return;
+  }
+  if (c.kind == CanonKind::Traverse && k.rapid_mode == RapidMode::DogLeg) {
+    w.plan.timing = MoveTiming::DogLeg;
+    previous_flows = false;
+    if (linuxcnc_path) linuxcnc_path->stop();
+    return;
+  }
+  const MoveLimits limits = move_limits(c, k, warnings);
+  if (!(limits.length > kMinMoveLength)) {
+    w.plan.timing = MoveTiming::Point;
+    return;
+  }
+  if (c.kind == CanonKind::Probe) {
+    w.plan.timing = MoveTiming::RestToRest;
+    previous_flows = false;
+    if (linuxcnc_path) linuxcnc_path->stop();
+    return;
+  }
+  if (linuxcnc_path) {
+    w.plan.timing = MoveTiming::Chained; // its charge arrives once its segment is settled
+    w.plan.count = 0;
+    w.plan.charged = false;
+    if (task_waiting > 0 && last_move != kNone) rest_after.emplace_back(last_move, task_waiting);
+    task_waiting = 0;
+    last_move = i;
+    linuxcnc_path->move(i, c);
+    return;
+  }
+  if (previous_flows)
+    items.back().junction_after =
+        junction_speed(previous_limits, limits, previous_mode, previous_tolerance, k);
+  w.plan = MovePlan{MoveTiming::Chained, 1, static_cast<std::uint32_t>(items.size())};
+  items.push_back(SpeedPlanItem{limits.length, limits.vmax, limits.accel, limits.jerk});
+  previous_limits = limits;
+  previous_flows = true;
+  previous_mode = c.state.path_mode;
+  previous_tolerance = c.state.path_tolerance;
+}
+
+void Planner::Impl::look_ahead(bool at_end) {
+  plan_speeds(items, front, at_end);
+}
+
+// Whether a command's timing is final: a move's speeds are, and so is what LinuxCNC's task adds
+// after it (known once the next move has arrived).
+bool Planner::Impl::ready(const WaitingCommand& w) const {
+  if (w.plan.timing != MoveTiming::Chained) return true;
+  if (!w.plan.charged) return false;
+  if (w.plan.item + w.plan.count > front.final_items) return false;
+  return !linuxcnc_path || finished || w.timed.command != last_move;
+}
+
+void Planner::Impl::send_ready() {
+  while (!waiting.empty() && ready(waiting.front())) {
+    WaitingCommand& w = waiting.front();
+    time(w);
+    sink(w.command, w.timed);
+    waiting.pop_front();
+    ++first_waiting;
+  }
+  // Items no waiting command is, or may yet be, charged with.
+  std::size_t in_use = front.final_items;
+  for (const WaitingCommand& w : waiting)
+    if (w.plan.timing == MoveTiming::Chained && w.plan.charged) {
+      in_use = std::min<std::size_t>(in_use, w.plan.item);
+      break; // charges come in order
+    }
+  if (linuxcnc_path) in_use = std::min(in_use, linuxcnc_path->oldest_item_in_use());
+  items.drop_before(in_use);
+}
+
+// Step 3 for one command.
+void Planner::Impl::time(WaitingCommand& w) {
+  const CanonCommand& c = w.command;
+  TimedCommand& out = w.timed;
+  const std::size_t i = out.command;
+  out.start_s = clock;
+  switch (w.plan.timing) {
+  case MoveTiming::NotAMove:
+    if (out.duration_s > 0 || c.kind == CanonKind::ProgramStop ||
+        c.kind == CanonKind::OptionalStop || c.kind == CanonKind::ProgramEnd)
+      path_speed = 0;
+    break;
+  case MoveTiming::Point: {
+    out.entry_speed_mm_s = out.exit_speed_mm_s = out.peak_speed_mm_s = path_speed;
+    const TimedSpan still(VelocityProfile::build(path_speed, path_speed, 0, 0, 1, 0));
+    sample_move(c, still, 0, clock, options, out.samples);
+    break;
+  }
+  case MoveTiming::Chained: {
+    const MovePlan& plan = w.plan;
+    TimedSpan span;
+    for (std::uint32_t j = 0; j < plan.count; ++j)
+      span.add(item_profile(items[plan.item + j]));
+    if (plan.count == 0) // run as part of the next move's blend arc
+      span.add(VelocityProfile::build(path_speed, path_speed, 0, 0, 1, 0));
+    if (plan.begin > 0 || plan.end < 1) span.restrict(plan.begin, plan.end);
+    out.duration_s = finite_or_zero(span.duration(), c.line, warnings);
+    out.length_mm = move_length(c);
+    out.entry_speed_mm_s = span.entry_speed();
+    out.exit_speed_mm_s = span.exit_speed();
+    out.peak_speed_mm_s = span.peak_speed();
+    sample_move(c, span, out.length_mm, clock, options, out.samples);
+    path_speed = out.exit_speed_mm_s;
+    while (!rest_after.empty() && rest_after.front().first < i)
+      rest_after.pop_front();
+    if (!rest_after.empty() && rest_after.front().first == i) {
+      // The codes after this move run with the machine at rest (LinuxCNC rule).
+      out.duration_s += rest_after.front().second;
+      rest_after.pop_front();
+      out.samples.push_back(MotionSample{clock + out.duration_s, 1.0, c.end, 0.0});
+    }
+    break;
+  }
+  case MoveTiming::RestToRest: {
+    const MoveLimits limits = move_limits(c, k, warnings);
+    const VelocityProfile profile =
+        VelocityProfile::rest_to_rest(limits.vmax, limits.length, limits.accel, limits.jerk);
+    out.duration_s = finite_or_zero(profile.duration(), c.line, warnings);
+    out.length_mm = limits.rotary_only ? 0 : limits.length;
+    out.peak_speed_mm_s = profile.peak_speed();
+    sample_move(c, TimedSpan(profile), out.length_mm, clock, options, out.samples);
+    path_speed = 0;
+    break;
+  }
+  case MoveTiming::DogLeg: {
+    const DogLegMove dog_leg(c, k);
+    out.duration_s = finite_or_zero(dog_leg.duration(), c.line, warnings);
+    out.length_mm = move_length(c);
+    out.peak_speed_mm_s = dog_leg.peak_speed();
+    sample_dog_leg(c, dog_leg, clock, options, out.samples);
+    path_speed = 0;
+    break;
+  }
+  }
+  clock += out.duration_s;
+}
+
+double Planner::Impl::finish() {
+  if (finished) return clock;
+  if (linuxcnc_path) linuxcnc_path->finish();
+  finished = true;
+  look_ahead(true);
+  send_ready();
+  logger().debug("planned {} commands ({} look-ahead items): {:.3f} s", next_number, items.size(),
                  clock);
+  return clock;
+}
+
+Planner::Planner(const MachineProfile& machine, const PlanOptions& options, Sink sink)
+    : impl_(std::make_unique<Impl>(machine, options, std::move(sink))) {}
+
+Planner::~Planner() = default;
+
+void Planner::add(const CanonCommand& command) {
+  impl_->add(command);
+}
+
+double Planner::finish() {
+  return impl_->finish();
+}
+
+std::vector<Diagnostic> Planner::take_diagnostics() {
+  return impl_->warnings.take();
+}
+
+Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& machine,
+              const PlanOptions& options) {
+  Timeline timeline;
+  timeline.commands.reserve(commands.size());
+  Planner planner(machine, options, [&timeline](const CanonCommand&, TimedCommand& timed) {
+    timeline.commands.push_back(std::move(timed));
+  });
+  for (const CanonCommand& c : commands)
+    planner.add(c);
+  timeline.total_s = planner.finish();
+  timeline.diagnostics = planner.take_diagnostics();
   return timeline;
 }
 

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -40,6 +42,33 @@ struct PlanOptions {
   double max_sample_step_mm = 0;
   // Upper bound on the time between two samples (s); 0 = none.
   double max_sample_dt_s = 0;
+  // Time nothing before the end of the program (the look-ahead sees it all at once). The result
+  // is the same; tests compare the two.
+  bool look_ahead_whole_program = false;
+};
+
+// The planner as a stream, for programs of any length: commands go in one at a time and come
+// out timed, in order, as soon as nothing later can change their timing (the look-ahead has
+// reached a point whose speed no later move can change: a stop, a sharp corner, a speed limit).
+// Memory holds only the commands and moves between that point and the newest command.
+class Planner {
+public:
+  // Called once per command, in order, with its timing (which the sink may move from).
+  using Sink = std::function<void(const CanonCommand& command, TimedCommand& timed)>;
+  Planner(const MachineProfile& machine, const PlanOptions& options, Sink sink);
+  ~Planner();
+  Planner(const Planner&) = delete;
+  Planner& operator=(const Planner&) = delete;
+
+  void add(const CanonCommand& command);
+  // The end of the program: times what is still waiting; returns the program's total time.
+  double finish();
+  // Warnings about moves and codes so far (each kind once, with a count).
+  std::vector<Diagnostic> take_diagnostics();
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 struct Timeline {
@@ -48,6 +77,7 @@ struct Timeline {
   std::vector<Diagnostic> diagnostics;
 };
 
+// The whole program at once (through a Planner).
 Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& machine,
               const PlanOptions& options = {});
 

@@ -1,0 +1,108 @@
+// The planner as a stream: commands timed as soon as the look-ahead allows come out exactly as
+// when the whole program is planned at once, and a long program goes out as it comes in.
+#include <doctest/doctest.h>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "test_helpers.hpp"
+
+namespace fs = std::filesystem;
+using namespace ncjoule;
+
+namespace {
+
+std::vector<MachineProfile> machines() {
+  MachineProfile trapezoid = test::round_machine();
+  MachineProfile s_curve = test::round_machine();
+  s_curve.kinematics.rapid_mode = RapidMode::DogLeg;
+  s_curve.kinematics.feed_profile = FeedProfile::SCurve;
+  for (AxisLimits& a : s_curve.kinematics.axes)
+    a.jerk_mm_s3 = 10000;
+  MachineProfile linuxcnc = test::round_machine();
+  linuxcnc.kinematics.junction_rule = JunctionRule::LinuxCnc29;
+  return {trapezoid, s_curve, linuxcnc};
+}
+
+// Every field of every timed command, bit for bit.
+void check_same(const Timeline& streamed, const Timeline& whole) {
+  REQUIRE(streamed.commands.size() == whole.commands.size());
+  CHECK(streamed.total_s == whole.total_s);
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < whole.commands.size(); ++i) {
+    const TimedCommand& a = streamed.commands[i];
+    const TimedCommand& b = whole.commands[i];
+    bool same = a.command == b.command && a.start_s == b.start_s && a.duration_s == b.duration_s &&
+                a.entry_speed_mm_s == b.entry_speed_mm_s &&
+                a.exit_speed_mm_s == b.exit_speed_mm_s && a.peak_speed_mm_s == b.peak_speed_mm_s &&
+                a.samples.size() == b.samples.size();
+    for (std::size_t j = 0; same && j < a.samples.size(); ++j)
+      same = a.samples[j].t_s == b.samples[j].t_s &&
+             a.samples[j].speed_mm_s == b.samples[j].speed_mm_s;
+    if (!same && differing++ == 0) {
+      CAPTURE(i);
+      CAPTURE(a.duration_s);
+      CAPTURE(b.duration_s);
+      CHECK(same);
+    }
+  }
+  CHECK(differing == 0);
+}
+
+} // namespace
+
+TEST_CASE("streamed timing equals whole-program timing on LinuxCNC's nc_files and the samples") {
+  std::vector<fs::path> programs;
+  for (const fs::path folder :
+       {fs::path("/usr/share/linuxcnc/ncfiles"), fs::path(NCJOULE_SOURCE_DIR) / "samples"})
+    if (fs::is_directory(folder))
+      for (const auto& entry : fs::recursive_directory_iterator(folder))
+        if (entry.path().extension() == ".ngc" || entry.path().extension() == ".nc")
+          programs.push_back(entry.path());
+  REQUIRE(programs.size() > 10);
+  PlanOptions whole_options;
+  whole_options.look_ahead_whole_program = true;
+  whole_options.max_sample_step_mm = 0.5;
+  PlanOptions stream_options = whole_options;
+  stream_options.look_ahead_whole_program = false;
+  for (const fs::path& path : programs) {
+    CAPTURE(path.string());
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    InterpreterOptions options;
+    options.max_commands = 2'000'000;
+    const Toolpath toolpath = interpret(make_source(path.string(), text.str()), options);
+    for (const MachineProfile& machine : machines())
+      check_same(plan(toolpath.commands, machine, stream_options),
+                 plan(toolpath.commands, machine, whole_options));
+  }
+}
+
+TEST_CASE("a long program goes out while it comes in") {
+  // 20,000 short moves in G64 with a stop (a corner of 90 degrees) every 10.
+  std::ostringstream program;
+  program << "G21 G90 G64\nF3000\n";
+  for (int i = 0; i < 20000; ++i) {
+    const int leg = i / 10;
+    program << "G1 X" << (leg % 2 ? 10 - (i % 10) : i % 10) << " Y" << leg * 0.5 << "\n";
+  }
+  program << "M2\n";
+  const Toolpath toolpath = interpret(make_source("long.ngc", program.str()));
+  for (const MachineProfile& machine : machines()) {
+    std::size_t out_before_end = 0, added = 0, most_waiting = 0;
+    Planner planner(machine, {}, [&](const CanonCommand&, TimedCommand& timed) {
+      CHECK(timed.command == out_before_end); // in order, each once
+      ++out_before_end;
+    });
+    for (const CanonCommand& c : toolpath.commands) {
+      planner.add(c);
+      ++added;
+      most_waiting = std::max(most_waiting, added - out_before_end);
+    }
+    planner.finish();
+    CHECK(out_before_end == toolpath.commands.size());
+    CAPTURE(most_waiting);
+    CHECK(most_waiting < 400); // a window, not the program
+  }
+}

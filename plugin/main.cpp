@@ -1,5 +1,6 @@
 // ncjoule: predicts the time and energy of a CNC milling program before it runs.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <exception>
 #include <iostream>
 #include <spdlog/sinks/stdout_sinks.h>
@@ -41,6 +42,13 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "ncjoule: internal error: " << e.what() << '\n';
     return kInternalError;
+  }
+  // Output that did not reach standard output (a full disk, a closed pipe) is a failed run, not
+  // a quiet one: whatever read it has only part of it.
+  std::cout.flush();
+  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+    std::cerr << "ncjoule: cannot write to standard output: the output is incomplete\n";
+    return kOutputError;
   }
   return exit_code;
 }

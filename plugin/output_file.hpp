@@ -1,6 +1,7 @@
 // Writing a command's output so that a failure never leaves a half-written file: the text goes
 // to a temporary file next to the target, which is renamed over the target only when every byte
-// is on disk. Used by the commands that rewrite programs (annotate, strip).
+// is on disk. Every command that writes a file uses it (annotate, strip, report, calibrate, and
+// the C API).
 #pragma once
 
 #include <cerrno>

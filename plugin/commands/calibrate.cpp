@@ -16,6 +16,7 @@
 #include "ncjoule/calibrate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
+#include "output_file.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -190,27 +191,13 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
   return kOk;
 }
 
-// Writes beside the target and renames, so that a failure leaves no half-written profile.
+// The profile goes through the one output writer: a failure leaves no half-written profile.
 int write_profile(const std::string& output, const std::string& text) {
-  const std::string temporary = output + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << "# Machine profile written by ncjoule calibrate.\n" << text;
-    if (!out) {
-      std::fprintf(stderr, "%s: cannot write\n", temporary.c_str());
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      return kOutputError;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, output, ec);
-  if (ec) {
-    std::fprintf(stderr, "%s: cannot write: %s\n", output.c_str(), ec.message().c_str());
-    std::filesystem::remove(temporary, ec);
-    return kOutputError;
-  }
-  return kOk;
+  const std::string error =
+      write_output_file(output, "# Machine profile written by ncjoule calibrate.\n" + text);
+  if (error.empty()) return kOk;
+  std::fprintf(stderr, "ncjoule: %s; nothing was written\n", error.c_str());
+  return kOutputError;
 }
 
 int run_calibrate(const CalibrateCliOptions& o) {

@@ -19,6 +19,7 @@
 #include "command_registry.hpp"
 #include "multi_estimate.hpp"
 #include "ncjoule/report.hpp"
+#include "output_file.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -28,44 +29,6 @@ struct ReportOptions {
   EstimateSettings settings;
   std::string output = "report.html";
 };
-
-// Writes `text` next to `path` under a temporary name, then renames it over `path`: readers see
-// the old file or the whole new one, never a part.
-bool write_atomically(const std::string& path, const std::string& text, std::string* error) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string pattern = (dir / ("." + target.filename().string() + ".XXXXXX")).string();
-  const int fd = mkstemp(pattern.data());
-  if (fd < 0) {
-    *error = std::string("cannot create a file in ") + dir.string() + ": " + std::strerror(errno);
-    return false;
-  }
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      *error = std::string("cannot write ") + path + ": " + std::strerror(errno);
-      ::close(fd);
-      ::unlink(pattern.c_str());
-      return false;
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
-    *error = std::string("cannot write ") + path + ": " + std::strerror(errno);
-    ::unlink(pattern.c_str());
-    return false;
-  }
-  ::chmod(pattern.c_str(), 0644); // mkstemp makes it 0600; a report is meant to be shared
-  if (std::rename(pattern.c_str(), path.c_str()) != 0) {
-    *error = std::string("cannot replace ") + path + ": " + std::strerror(errno);
-    ::unlink(pattern.c_str());
-    return false;
-  }
-  return true;
-}
 
 int run_report(const ReportOptions& o) {
   MachineProfile machine;
@@ -80,9 +43,8 @@ int run_report(const ReportOptions& o) {
   for (const EstimatedProgram& p : programs)
     inputs.push_back({&p.source, &p.estimate});
   const std::string html = html_report(inputs, machine);
-  std::string error;
-  if (!write_atomically(o.output, html, &error)) {
-    std::cerr << "ncjoule: " << error << '\n';
+  if (const std::string error = write_output_file(o.output, html); !error.empty()) {
+    std::cerr << "ncjoule: " << error << "; nothing was written\n";
     return kOutputError;
   }
   std::cerr << "ncjoule: wrote " << o.output << " (" << html.size() / 1024 << " KiB, "

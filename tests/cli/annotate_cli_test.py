@@ -354,6 +354,12 @@ def full_disk():
         r = subprocess.run([NCJOULE, "strip", SAMPLE], stdout=full, stderr=subprocess.PIPE,
                            timeout=300)
     expect_refusal(r, 3, ["standard output"], "strip to /dev/full")
+    # Listings and JSON on a full standard output: exit 3, never a quiet success.
+    for extra in ([], ["--json"], ["--csv"]):
+        with open("/dev/full", "wb") as full:
+            r = subprocess.run([NCJOULE, "estimate", SAMPLE, "--machine", GENERIC, *extra],
+                               stdout=full, stderr=subprocess.PIPE, timeout=300)
+        expect_refusal(r, 3, ["standard output"], "estimate %s to /dev/full" % " ".join(extra))
 
     with tempfile.TemporaryDirectory() as d:
         # A file size limit: the temporary file cannot grow past the original's size.

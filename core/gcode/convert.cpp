@@ -27,6 +27,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   if (!b.keywords.empty()) keywords(b, v, cycle_now);
   const bool positioning = v.has_axis();
 
+  check_e_word(v);
   convert_comments(b);            // 1
   convert_other_codes(v);         // 2
   convert_feed(v);                // 3, 4
@@ -50,6 +51,23 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   else if (modal_cycle_ && positioning && v.has_axis())
     sinumerik_cycle(*modal_cycle_);
   convert_stops_and_calls(v); // 21
+}
+
+// E has few uses on a mill (LinuxCNC: the G70/G76 lathe cycles and M66-M68 I/O; Haas: G187's
+// accuracy; RepRap: the extruder). Its usual source is a number written with an exponent, which
+// G-code does not have: "R1e9" is R1 and E9. rs274 refuses an E word nothing uses, as the
+// LinuxCNC dialect does when it was chosen; elsewhere it is warned about and ignored.
+void Interpreter::check_e_word(const BlockValues& v) {
+  if (!v.has('e') || dialect_.name == "reprap") return;
+  if (has_g(v, 700) || has_g(v, 760) || has_g(v, 1870) || has_m(v, 66) || has_m(v, 67) ||
+      has_m(v, 68))
+    return;
+  const int column = v.column['e' - 'a'];
+  const char* why = " (G-code numbers have no exponent: R1e9 is R1 and E9)";
+  if (dialect_.name == "linuxcnc" && strict_)
+    error(column, std::string("E word with no G70, G76, M66, M67 or M68 to use it") + why);
+  else
+    warning(column, std::string("E word ignored: nothing on the block uses it") + why);
 }
 
 // 1. Comments and messages.

@@ -112,6 +112,7 @@ private:
   void convert_spindle_speed(const BlockValues& v);
   void convert_tool(const BlockValues& v);
   void convert_spindle_and_coolant(const BlockValues& v);
+  void check_e_word(const BlockValues& v);
   void check_m_codes(const BlockValues& v);
   void convert_dwell(const Block& b, const BlockValues& v);
   void convert_plane_and_units(const BlockValues& v);

@@ -137,3 +137,23 @@ TEST_CASE("block delete is honoured only when asked for") {
   o.block_delete = true;
   CHECK(moves(interpret(s, o)).size() == 1);
 }
+
+TEST_CASE("a number with an exponent is an E word: an error as rs274 has it, else a warning") {
+  // rs274: "E word with no G70, G76, M66, M67 or M68 to use it".
+  const Toolpath strict = run("G21 G0 X0 Y0\nG1 X1e3 F100\nM2\n", "linuxcnc");
+  const auto e = with_severity(strict, Severity::Error);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].column == 6);
+  CHECK(e[0].message.find("no exponent") != std::string::npos);
+
+  const Toolpath fanuc = run("G21 G0 X0 Y0\nG1 X1e3 F100\nM30\n", "fanuc");
+  CHECK(errors(fanuc) == 0);
+  const auto w = with_severity(fanuc, Severity::Warning);
+  REQUIRE(w.size() == 1);
+  CHECK(w[0].message.find("E word ignored") != std::string::npos);
+  CHECK(moves(fanuc).back() == "STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
+
+  // Where E has a use, nothing is said.
+  CHECK(with_severity(run("G21\nM66 P0 E0 L0\nM2\n", "linuxcnc"), Severity::Warning).empty());
+}

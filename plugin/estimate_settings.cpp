@@ -1,5 +1,7 @@
 #include "estimate_settings.hpp"
 
+#include <cmath>
+
 #include <iostream>
 #include <unistd.h>
 
@@ -8,6 +10,24 @@
 #include "ncjoule/profile.hpp"
 
 namespace ncjoule::cli {
+
+namespace {
+
+// A number within [low, high]; NaN and infinities are refused (CLI11's own ranges let NaN by).
+CLI::Validator finite_between(double low, double high) {
+  return CLI::Validator(
+      [low, high](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v) || v < low || v > high)
+          return "must be a number from " + CLI::detail::to_string(low) + " to " +
+                 CLI::detail::to_string(high);
+        return {};
+      },
+      "", "finite range");
+}
+
+} // namespace
 
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
   cmd.add_option("-m,--machine", s.machine, "Machine profile (.toml)")->required();
@@ -39,16 +59,19 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(CLI::IsMember({"mm", "inch"}));
   cmd.add_option("--engine", s.engine, "Removal engine: dexel (default) or voxel")
       ->check(CLI::IsMember({"dexel", "voxel"}));
-  cmd.add_option("--grid", s.grid_mm, "Removal grid spacing in mm (default: from the tools)")
-      ->check(CLI::PositiveNumber);
+  cmd.add_option("--grid", s.grid_mm,
+                 "Removal grid spacing in mm, 0.001 to 100 (default: from the tools)")
+      ->check(finite_between(0.001, 100));
   cmd.add_option("--memory-limit", s.memory_limit_mib,
                  "Memory the stock model may take, in MiB (default: a quarter of this machine's "
                  "memory); a --grid that needs more is refused, the automatic one is coarsened")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_between(1, 1e9));
   cmd.add_flag("--no-removal", s.no_removal,
                "Do not simulate material removal (no tools needed; cutting power is zero)");
-  cmd.add_option("--co2", s.co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)");
-  cmd.add_option("--price", s.price_per_kwh, "Price per kWh (overrides the profile)");
+  cmd.add_option("--co2", s.co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)")
+      ->check(finite_between(0, 100));
+  cmd.add_option("--price", s.price_per_kwh, "Price per kWh (overrides the profile)")
+      ->check(finite_between(0, 1e6));
 }
 
 bool load_machine(const std::string& path, MachineProfile& machine) {

@@ -1,5 +1,7 @@
 #include "number_format.hpp"
 
+#include "ncjoule/duration.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,12 +32,13 @@ std::string format_duration(double seconds) {
   // Below a minute, three significant digits (at most ms); 59.96 s would print as "60s", so the
   // minute form starts where rounding reaches it.
   if (seconds < 59.95) return format_significant(seconds, 3, 3) + "s";
-  const long whole = std::lround(seconds);
+  const ClockParts p = split_duration(seconds, 1);
+  if (p.hours >= 1e9) return huge_hours(p.hours) + "h";
   char text[64];
-  if (whole < 3600)
-    std::snprintf(text, sizeof text, "%ldm%02lds", whole / 60, whole % 60);
+  if (p.hours == 0)
+    std::snprintf(text, sizeof text, "%dm%02.0fs", p.minutes, p.seconds);
   else
-    std::snprintf(text, sizeof text, "%ldh%02ldm%02lds", whole / 3600, whole / 60 % 60, whole % 60);
+    std::snprintf(text, sizeof text, "%.0fh%02dm%02.0fs", p.hours, p.minutes, p.seconds);
   return text;
 }
 

@@ -1,6 +1,7 @@
 // The pipeline: a first pass over the program for what must be known before anything is timed
 // (the tools it uses, the extent of its cuts), then the stream: interpret, plan, remove material,
 // integrate power, fold into per-line results.
+#include <cmath>
 #include <chrono>
 #include <exception>
 
@@ -177,6 +178,15 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     return e;
   }
   if (removal) add_diagnostics(e, removal->summary().diagnostics, source.path);
+  // A result out of the range of numbers (a profile or program value at its limits) is not an
+  // estimate: said, and the run fails, rather than shown as "0 s" or "inf".
+  if (!std::isfinite(e.time_s) || !std::isfinite(e.energy.energy_j) ||
+      !std::isfinite(e.energy.removed_mm3)) {
+    e.diagnostics.push_back({Severity::Error, source.path, 0, 0,
+                             "the estimate is not a finite number: a value of the program, the "
+                             "profile or the stock is out of range"});
+    e.failed = true;
+  }
   logger().info("stream: {} commands in {:.3f} s", streamed, seconds_since(t));
   if (options.progress) options.progress(1);
   return e;

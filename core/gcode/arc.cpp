@@ -1,4 +1,5 @@
 // Geometry of canonical moves: arc radius, sweep and length, and points along a move.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -51,23 +52,23 @@ ArcGeometry arc_geometry(const CanonCommand& arc) {
   const double cf = arc.centre_first, cs = arc.centre_second;
   ArcGeometry g;
   g.radius = std::hypot(s.first - cf, s.second - cs);
-  const double a0 = std::atan2(s.second - cs, s.first - cf);
-  const double a1 = std::atan2(e.second - cs, e.first - cf);
+  // The angle between the radii to start and end, from their cross and dot products: accurate
+  // for the smallest angles too (a 1 mm chord of a 1e13 mm radius is not a full circle).
+  const double sx = s.first - cf, sy = s.second - cs, ex = e.first - cf, ey = e.second - cs;
+  const double between = std::atan2(sx * ey - sy * ex, sx * ex + sy * ey); // (-pi, pi]
+  const double chord = std::hypot(e.first - s.first, e.second - s.second);
+  // An end point on the start is a full circle.
+  const bool closed = std::abs(between) <= 1e-12 && chord <= 1e-7; // mm
   constexpr double two_pi = 2 * std::numbers::pi;
-  const int turns = std::abs(arc.rotation);
+  const int turns = std::max(1, std::abs(arc.rotation));
   double sweep;
   if (arc.rotation >= 0) { // counter-clockwise: a positive sweep
-    sweep = a1 - a0;
-    while (sweep <= 1e-12)
-      sweep += two_pi;
-    sweep += two_pi * (turns > 0 ? turns - 1 : 0);
+    sweep = closed ? two_pi : (between > 0 ? between : between + two_pi);
+    sweep += two_pi * (turns - 1);
   } else {
-    sweep = a1 - a0;
-    while (sweep >= -1e-12)
-      sweep -= two_pi;
+    sweep = closed ? -two_pi : (between < 0 ? between : between - two_pi);
     sweep -= two_pi * (turns - 1);
   }
-  // An end point equal to the start is a full circle (the loops above already give 2*pi).
   g.sweep = sweep;
   g.axial = e.normal - s.normal;
   g.length = std::hypot(g.radius * sweep, g.axial);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "codes.hpp"
 #include "interpreter_impl.hpp"
 
 namespace ncjoule::detail {
@@ -77,8 +78,20 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   }
   int repeats = 1;
   if (v.has('l')) {
-    repeats = int(std::lround(*v['l']));
-    if (repeats < 0) error(v.column['l' - 'a'], "L must not be negative"), repeats = 0;
+    const double count = std::round(*v['l']);
+    // As loops are: a runaway count is refused before it runs, not after hours of it.
+    const std::size_t cap = options_.max_cycle_repeats;
+    if (count < 0) {
+      error(v.column['l' - 'a'], "L must not be negative");
+      repeats = 0;
+    } else if (!(count <= (cap ? double(cap) : 2e9))) {
+      error(v.column['l' - 'a'], "L" + number_text(count) + " repeats the cycle more than " +
+                                     std::to_string(cap ? cap : std::size_t(2e9)) +
+                                     " times: refused (runaway count?)");
+      return;
+    } else {
+      repeats = static_cast<int>(count);
+    }
   }
   double q = cycle_q_ * u;
   if ((cycle == Motion::G83 || cycle == Motion::G73) && q <= 0) {

@@ -71,12 +71,18 @@ bool Interpreter::system_parameter(std::string_view name, double& value) const {
 constexpr std::size_t kMaxDiagnostics = 1000;
 
 void Interpreter::report(Severity severity, int column, std::string message) {
+  // Past the cap only one more error is kept, so that the run still fails as it must; memory
+  // and output stay bounded whatever the program repeats.
+  if (result_.diagnostics.size() > kMaxDiagnostics &&
+      (severity != Severity::Error || error_past_cap_))
+    return;
   if (!reported_.emplace(current_line_, column, message).second) return;
   if (result_.diagnostics.size() == kMaxDiagnostics) {
     result_.diagnostics.push_back({Severity::Note, source_.path, current_line_ + 1, 0,
                                    "too many diagnostics: the rest are not shown"});
   }
-  if (result_.diagnostics.size() > kMaxDiagnostics && severity != Severity::Error) return;
+  if (result_.diagnostics.size() > kMaxDiagnostics && severity == Severity::Error)
+    error_past_cap_ = true;
   result_.diagnostics.push_back(
       {severity, source_.path, current_line_ + 1, column, std::move(message)});
 }

@@ -217,6 +217,7 @@ private:
   bool arc_incremental_ = true;   // G91.1
   bool retract_to_r_ = true;      // G99
   double naivecam_tolerance_ = 0; // G64 Q (else P): restored after canned cycles
+  bool error_past_cap_ = false;   // an error was kept past the diagnostics cap
   int cutter_comp_ = 40;
   bool arc_offsets_reversed_ = false;          // I/J/K read from the centre to the start
   std::size_t arcs_fitting_only_standard_ = 0; // I/J/K arcs that fit only the standard way

@@ -39,7 +39,19 @@ std::string format_diagnostic(const Diagnostic& d) {
     out += ": error: ";
     break;
   }
-  out += d.message;
+  // Messages quote the program; its control bytes (NUL, ESC, ...) are shown escaped, so that a
+  // program cannot drive the terminal the message is printed on.
+  for (const char ch : d.message) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f) {
+      static const char digits[] = "0123456789abcdef";
+      out += "\\x";
+      out += digits[c >> 4];
+      out += digits[c & 15];
+    } else {
+      out += ch;
+    }
+  }
   return out;
 }
 

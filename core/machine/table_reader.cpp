@@ -61,6 +61,8 @@ double TableReader::checked(std::string_view key, const toml::node& node, double
   if (const auto* f = node.as_floating_point()) value = f->get();
   if (!value) fail(key, std::string("expected a number, found ") + type_name(node));
   if (!std::isfinite(*value)) fail(key, "must be a finite number");
+  // No quantity of a machine comes near this; 1e308 s of tool change is a slip, not a machine.
+  if (std::abs(*value) > 1e12) fail(key, "is out of any plausible range (above 1e12)");
   if (range == Range::Positive && !(*value > 0)) fail(key, "must be greater than zero");
   if (range == Range::NonNegative && *value < 0) fail(key, "must not be negative");
   return *value * factor;

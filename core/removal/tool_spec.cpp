@@ -50,8 +50,10 @@ std::optional<Tool> make_tool(const ToolFields& f, std::string* error) {
   const auto shape = tool_shape_from_name(f.type);
   if (!shape)
     return fail("type: '" + f.type + "' is not one of flat, ball, bullnose, drill, chamfer");
-  if (!(f.diameter_mm > 0) || !std::isfinite(f.diameter_mm))
-    return fail("diameter_mm: must be given, in mm, above 0");
+  // Below a micrometre or above two metres is a typing or unit slip, and a stock model fine
+  // enough for it would not fit in memory.
+  if (!(f.diameter_mm >= 0.001 && f.diameter_mm <= 2000))
+    return fail("diameter_mm: must be given, in mm, from 0.001 to 2000");
   Tool tool;
   tool.number = f.number;
   tool.shape = *shape;

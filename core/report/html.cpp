@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "html_assets.hpp"
+#include "ncjoule/duration.hpp"
 #include "ncjoule/report.hpp"
 #include "svg_chart.hpp"
 
@@ -27,6 +28,7 @@ std::string base_name(const std::string& path) {
 
 std::string duration_text(double s) {
   if (s < 60) return format_number(s, 1) + " s";
+  if (s >= 3.6e12) return huge_hours(s / 3600) + " h";
   return report_detail::clock_label(s) + (s >= 3600 ? " h" : " min");
 }
 

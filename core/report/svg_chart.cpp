@@ -1,6 +1,8 @@
 // Inline SVG charts: value over time, and horizontal stacked bars.
 #include "svg_chart.hpp"
 
+#include "ncjoule/duration.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -109,13 +111,8 @@ std::string format_number(double value, int decimals) {
 }
 
 std::string clock_label(double seconds) {
-  const long s = std::lround(std::max(0.0, seconds));
-  char text[32];
-  if (s >= 3600)
-    std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-  else
-    std::snprintf(text, sizeof text, "%ld:%02ld", s / 60, s % 60);
-  return text;
+  const std::string text = duration_clock(seconds);
+  return text.back() == 'h' ? text.substr(0, text.size() - 2) : text; // callers add the unit
 }
 
 std::string component_color(PowerComponent component) {

@@ -18,6 +18,7 @@
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "estimate_settings.hpp"
+#include "ncjoule/duration.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
@@ -38,17 +39,7 @@ struct EstimateCliOptions {
 // ---------------------------------------------------------------------------------------------
 
 std::string clock_text(double seconds) {
-  const long whole = static_cast<long>(seconds);
-  char text[64];
-  if (whole >= 3600)
-    std::snprintf(text, sizeof text, "%ld h %02ld min %04.1f s", whole / 3600, whole / 60 % 60,
-                  seconds - static_cast<double>(whole / 60 * 60));
-  else if (whole >= 60)
-    std::snprintf(text, sizeof text, "%ld min %04.1f s", whole / 60,
-                  seconds - static_cast<double>(whole / 60 * 60));
-  else
-    std::snprintf(text, sizeof text, "%.1f s", seconds);
-  return text;
+  return duration_words(seconds);
 }
 
 void print_summary(const SourceFile& source, const MachineProfile& machine, const Estimate& e) {

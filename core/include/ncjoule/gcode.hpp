@@ -280,6 +280,7 @@ struct InterpreterOptions {
   bool optional_stop = true;                   // M1 stops (only recorded; time counts zero)
   std::size_t max_commands = 0;                // 0: no limit (guards runaway loops)
   std::size_t max_loop_iterations = 1'000'000; // backward jumps of loops (0: no limit)
+  std::size_t max_cycle_repeats = 100'000;     // L of one canned cycle block (0: no limit)
 };
 
 struct InterpretResult {

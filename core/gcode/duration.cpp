@@ -1,0 +1,54 @@
+#include "ncjoule/duration.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace ncjoule {
+namespace {
+
+constexpr double kHugeHours = 1e9; // above this, hours are written in scientific notation
+
+} // namespace
+
+ClockParts split_duration(double seconds, double step) {
+  if (!std::isfinite(seconds) || seconds < 0) seconds = 0;
+  if (step > 0 && seconds / step < 1e15) seconds = std::round(seconds / step) * step;
+  ClockParts p;
+  p.hours = std::floor(seconds / 3600);
+  const double rest = seconds - p.hours * 3600;
+  p.minutes = static_cast<int>(std::fmin(59, std::floor(rest / 60)));
+  p.seconds = std::fmax(0, rest - p.minutes * 60.0);
+  return p;
+}
+
+std::string huge_hours(double hours) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", hours);
+  return text;
+}
+
+std::string duration_words(double seconds) {
+  const ClockParts p = split_duration(seconds, 0.1);
+  char text[96];
+  if (p.hours >= kHugeHours) return huge_hours(p.hours) + " h";
+  if (p.hours > 0)
+    std::snprintf(text, sizeof text, "%.0f h %02d min %04.1f s", p.hours, p.minutes, p.seconds);
+  else if (p.minutes > 0)
+    std::snprintf(text, sizeof text, "%d min %04.1f s", p.minutes, p.seconds);
+  else
+    std::snprintf(text, sizeof text, "%.1f s", p.seconds);
+  return text;
+}
+
+std::string duration_clock(double seconds) {
+  const ClockParts p = split_duration(seconds, 1);
+  if (p.hours >= kHugeHours) return huge_hours(p.hours) + " h";
+  char text[64];
+  if (p.hours > 0)
+    std::snprintf(text, sizeof text, "%.0f:%02d:%02.0f", p.hours, p.minutes, p.seconds);
+  else
+    std::snprintf(text, sizeof text, "%d:%02.0f", p.minutes, p.seconds);
+  return text;
+}
+
+} // namespace ncjoule

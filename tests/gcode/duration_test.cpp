@@ -1,0 +1,31 @@
+// Durations in words and on a clock: rounding at the unit boundaries, and no overflow.
+#include <cmath>
+#include <doctest/doctest.h>
+#include <limits>
+
+#include "ncjoule/duration.hpp"
+
+using namespace ncjoule;
+
+TEST_CASE("durations in words and on a clock") {
+  CHECK(duration_words(12.34) == "12.3 s");
+  CHECK(duration_words(125) == "2 min 05.0 s");
+  CHECK(duration_words(3723) == "1 h 02 min 03.0 s");
+  CHECK(duration_words(59.96) == "1 min 00.0 s"); // rounded before it is split
+  CHECK(duration_clock(125) == "2:05");
+  CHECK(duration_clock(3599.6) == "1:00:00");
+  CHECK(duration_clock(3723) == "1:02:03");
+}
+
+TEST_CASE("durations never overflow and never go negative") {
+  CHECK(duration_words(6e28) == "1.67e+25 h");
+  CHECK(duration_clock(6e28) == "1.67e+25 h");
+  CHECK(duration_words(1e12) == "277777777 h 46 min 40.0 s");
+  CHECK(duration_words(-5) == "0.0 s");
+  CHECK(duration_words(std::numeric_limits<double>::quiet_NaN()) == "0.0 s");
+  CHECK(duration_words(std::numeric_limits<double>::infinity()) == "0.0 s");
+  const ClockParts p = split_duration(7199.99, 1);
+  CHECK(p.hours == 2);
+  CHECK(p.minutes == 0);
+  CHECK(p.seconds == 0);
+}

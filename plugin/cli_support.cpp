@@ -34,9 +34,11 @@ std::optional<SourceFile> read_source(const std::string& path) {
   return make_source(path == "-" ? "<stdin>" : path, std::move(text));
 }
 
-void print_diagnostics(const std::vector<Diagnostic>& diagnostics) {
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics, std::size_t dropped) {
   for (const Diagnostic& d : diagnostics)
     std::cerr << format_diagnostic(d) << '\n';
+  if (dropped > 0)
+    std::cerr << "ncjoule: " << dropped << " more diagnostics not shown (too many)\n";
 }
 
 std::optional<Dialect> dialect_from_option(const std::string& name) {

@@ -13,7 +13,8 @@ namespace ncjoule::cli {
 std::optional<SourceFile> read_source(const std::string& path);
 
 // Prints diagnostics to stderr, one per line, in file:line:column form.
-void print_diagnostics(const std::vector<Diagnostic>& diagnostics);
+// Prints each on its own line (control bytes escaped), then how many were left out.
+void print_diagnostics(const std::vector<Diagnostic>& diagnostics, std::size_t dropped = 0);
 
 // Looks up a dialect by name, or prints the known names and returns nullopt.
 std::optional<Dialect> dialect_from_option(const std::string& name);

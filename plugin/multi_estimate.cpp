@@ -33,7 +33,7 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
   }
   progress.finish();
   for (const EstimatedProgram& p : programs) {
-    print_diagnostics(p.estimate.diagnostics);
+    print_diagnostics(p.estimate.diagnostics, p.estimate.diagnostics_dropped);
     bool error = p.estimate.failed;
     for (const Diagnostic& d : p.estimate.diagnostics)
       error = error || d.severity == Severity::Error;

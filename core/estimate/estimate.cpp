@@ -1,6 +1,7 @@
 // The pipeline: a first pass over the program for what must be known before anything is timed
 // (the tools it uses, the extent of its cuts), then the stream: interpret, plan, remove material,
 // integrate power, fold into per-line results.
+#include <algorithm>
 #include <cmath>
 #include <chrono>
 #include <exception>
@@ -17,11 +18,18 @@ double seconds_since(Clock::time_point t) {
 }
 
 // At most this many diagnostics are kept; the rest are counted (Estimate::diagnostics_dropped).
+// Past the cap an error is still kept while none is, so that a failed run says why.
 constexpr std::size_t kMaxDiagnostics = 500;
+
+bool holds_error(const std::vector<Diagnostic>& diagnostics) {
+  return std::any_of(diagnostics.begin(), diagnostics.end(),
+                     [](const Diagnostic& d) { return d.severity == Severity::Error; });
+}
 
 void add_diagnostics(Estimate& e, const std::vector<Diagnostic>& more, const std::string& file) {
   for (Diagnostic d : more) {
-    if (e.diagnostics.size() >= kMaxDiagnostics && d.severity != Severity::Error) {
+    if (e.diagnostics.size() >= kMaxDiagnostics &&
+        (d.severity != Severity::Error || holds_error(e.diagnostics))) {
       ++e.diagnostics_dropped;
       continue;
     }

@@ -78,7 +78,7 @@ void Interpreter::report(Severity severity, int column, std::string message) {
     return;
   if (!reported_.emplace(current_line_, column, message).second) return;
   if (result_.diagnostics.size() == kMaxDiagnostics) {
-    result_.diagnostics.push_back({Severity::Note, source_.path, current_line_ + 1, 0,
+    result_.diagnostics.push_back({Severity::Warning, source_.path, current_line_ + 1, 0,
                                    "too many diagnostics: the rest are not shown"});
   }
   if (result_.diagnostics.size() > kMaxDiagnostics && severity == Severity::Error)

@@ -1,3 +1,4 @@
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <toml++/toml.h>
@@ -55,6 +56,9 @@ MachineProfile parse_profile(std::string_view text, const std::string& path) {
 }
 
 MachineProfile load_profile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw ProfileError(path, "", "is a directory, not a machine profile (.toml)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ProfileError(path, "", "cannot open the file");
   std::ostringstream text;

@@ -53,7 +53,7 @@ int run_annotate(const AnnotateCliOptions& o) {
   const AnnotatedProgram result =
       annotate_program(input->path, input->text, machine, with_progress, annotate_options);
   progress.finish();
-  print_diagnostics(result.estimate.diagnostics);
+  print_diagnostics(result.estimate.diagnostics, result.estimate.diagnostics_dropped);
   if (result.estimate.failed) {
     std::cerr << "ncjoule: " << input->path
               << " could not be estimated (see above); nothing was written\n";

@@ -156,7 +156,7 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
   EstimateOptions traced = options;
   traced.keep_trace = true; // the fit compares the log with the whole operating trace
   const Estimate e = estimate_program(*source, machine, traced);
-  print_diagnostics(e.diagnostics);
+  print_diagnostics(e.diagnostics, e.diagnostics_dropped);
   bool program_errors = e.failed;
   for (const Diagnostic& d : e.diagnostics)
     program_errors = program_errors || d.severity == Severity::Error;

@@ -118,7 +118,7 @@ int run_estimate(const EstimateCliOptions& o) {
   const Estimate e = estimate_program(*source, machine, with_progress);
   progress.finish();
   if (e.failed) {
-    print_diagnostics(e.diagnostics);
+    print_diagnostics(e.diagnostics, e.diagnostics_dropped);
     std::cerr << "ncjoule: " << source->path
               << " cannot be estimated (see above); --no-removal estimates it without the "
                  "material removal stage\n";
@@ -145,7 +145,7 @@ int run_estimate(const EstimateCliOptions& o) {
     }
   }
   std::cout.flush();
-  print_diagnostics(e.diagnostics);
+  print_diagnostics(e.diagnostics, e.diagnostics_dropped);
   for (const Diagnostic& d : e.diagnostics)
     if (d.severity == Severity::Error) return kInputError;
   return kOk;

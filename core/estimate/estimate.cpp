@@ -2,8 +2,8 @@
 // (the tools it uses, the extent of its cuts), then the stream: interpret, plan, remove material,
 // integrate power, fold into per-line results.
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <exception>
 
 #include "ncjoule/log.hpp"

@@ -128,9 +128,23 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
   std::size_t warnings = 0;
   for (const Diagnostic& d : e.diagnostics)
     warnings += d.severity != Severity::Note;
-  if (warnings > 0)
-    html += "<p class=\"note\">" + std::to_string(warnings) +
-            " warning(s) while estimating; run <code>ncjoule estimate</code> to see them.</p>";
+  if (warnings > 0) {
+    // The first few in full (a spindle asked for more than its rating, a fitted model used
+    // outside its range, a start inside the stock, ...), the rest counted.
+    constexpr std::size_t kShown = 20;
+    html +=
+        "<p class=\"note\">" + std::to_string(warnings) + " warning(s) while estimating:</p><ul>";
+    std::size_t shown = 0;
+    for (const Diagnostic& d : e.diagnostics) {
+      if (d.severity == Severity::Note) continue;
+      if (shown++ == kShown) break;
+      html += "<li class=\"note\">" + report_detail::html_escaped(format_diagnostic(d)) + "</li>";
+    }
+    html += "</ul>";
+    if (warnings > kShown)
+      html += "<p class=\"note\">and " + std::to_string(warnings - kShown) +
+              " more; <code>ncjoule estimate</code> prints them all.</p>";
+  }
   return html + "</section>";
 }
 

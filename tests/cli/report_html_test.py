@@ -93,6 +93,21 @@ with tempfile.TemporaryDirectory() as tmp:
                   "Energy per program, by component"]:
         check(title in html, f"section '{title}'")
 
+    # Warnings are shown in the page, escaped, not only counted: a program with no F word on its
+    # first feed move and no stock.
+    warned = os.path.join(tmp, "warned.ngc")
+    with open(warned, "w") as f:
+        f.write("G21 G90\nT1 M6\nS30000 M3\nG0 X0 Y0 Z1\nG1 Z-1 F100\nX40 <b>\nM2\n")
+    page2 = os.path.join(tmp, "warned.html")
+    r = subprocess.run([NCJOULE, "report", warned, "--machine", HAAS, "-o", page2],
+                       capture_output=True, text=True)
+    with open(page2, encoding="utf-8") as f:
+        html2 = f.read()
+    check("warning(s) while estimating" in html2 and "<li class=\"note\">" in html2,
+          "warnings listed in the page")
+    check("<b>" not in html2.split("warning(s) while estimating")[1],
+          "program text in warnings is escaped")
+
     # A page that cannot be written leaves no file and says why, with exit 3.
     bad = os.path.join(tmp, "no-such-dir", "r.html")
     r = subprocess.run([NCJOULE, "report", x, "--machine", HAAS, "--stock", stock, "-o", bad],

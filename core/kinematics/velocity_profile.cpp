@@ -52,15 +52,20 @@ double reachable_speed(double v0, double length, double accel, double jerk) {
   return v0 + 0.5 * (-b + std::sqrt(b * b - 4 * c));
 }
 
+VelocityProfile VelocityProfile::between(double v0, double v1) {
+  VelocityProfile p;
+  p.entry_ = std::max(0.0, v0);
+  p.exit_ = std::max(0.0, v1);
+  p.peak_ = std::max(p.entry_, p.exit_);
+  p.end_v_ = p.entry_;
+  return p;
+}
+
 VelocityProfile VelocityProfile::build(double v0, double v1, double vmax, double length,
                                        double accel, double jerk) {
-  VelocityProfile p;
-  v0 = std::max(0.0, v0);
-  v1 = std::max(0.0, v1);
-  p.entry_ = v0;
-  p.exit_ = v1;
-  p.peak_ = std::max(v0, v1);
-  p.end_v_ = v0;
+  VelocityProfile p = between(v0, v1);
+  v0 = p.entry_;
+  v1 = p.exit_;
   if (!(length > 0) || !(vmax > 0) || !(accel > 0)) return p; // takes no time
   p.length_ = length;
   const double floor_speed = std::max(v0, v1);
@@ -98,13 +103,9 @@ VelocityProfile VelocityProfile::build(double v0, double v1, double vmax, double
 }
 
 VelocityProfile VelocityProfile::ramp(double v0, double v1, double length) {
-  VelocityProfile p;
-  v0 = std::max(0.0, v0);
-  v1 = std::max(0.0, v1);
-  p.entry_ = v0;
-  p.exit_ = v1;
-  p.peak_ = std::max(v0, v1);
-  p.end_v_ = v0;
+  VelocityProfile p = between(v0, v1);
+  v0 = p.entry_;
+  v1 = p.exit_;
   if (!(length > 0) || !(v0 + v1 > 0)) return p;
   p.length_ = length;
   p.add((v1 * v1 - v0 * v0) / (2 * length), 0, 2 * length / (v0 + v1));

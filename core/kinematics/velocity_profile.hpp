@@ -45,6 +45,8 @@ public:
   double piece_start(int i) const { return pieces_[i].t0; }
 
 private:
+  // A profile of no length between `v0` and `v1` (negative speeds read as 0), to add phases to.
+  static VelocityProfile between(double v0, double v1);
   struct Piece {
     double t0 = 0, s0 = 0, v0 = 0, a0 = 0, jerk = 0, duration = 0;
   };

@@ -2,6 +2,7 @@
 # Configures and builds ncjoule in build/ (Release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DNCJOULE_STAGES="gcode;machine;kinematics;removal;energy;estimate;annotate;report" -DNCJOULE_COMMANDS=""
+# Every stage and command: -U drops a partial list an earlier configure may have cached, so the
+# defaults in core/CMakeLists.txt and plugin/CMakeLists.txt (the only lists) apply.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -U NCJOULE_STAGES -U NCJOULE_COMMANDS
 cmake --build build --parallel "$(nproc)"

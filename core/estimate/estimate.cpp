@@ -43,20 +43,23 @@ struct ProgramScan {
   ToolUsage tools;
   StockExtent extent;
   std::size_t commands = 0;
+  ToolCommentContext tool_comments; // units and tool changes the comments are read against
   void add(const CanonCommand& c) {
     ++commands;
     tools.add(c);
     extent.add(c);
+    tool_comments.add(c);
   }
 };
 
 // The tools as described by the tool table, then the program's header comments, then the job
 // file and the command line, each replacing the one before for the same number.
-std::map<int, Tool> described_tools(const SourceFile& source, const EstimateOptions& options,
+std::map<int, Tool> described_tools(const SourceFile& source, const ToolCommentContext& context,
+                                    const EstimateOptions& options,
                                     std::vector<Diagnostic>& diagnostics) {
   std::map<int, Tool> described =
       tools_from_table(options.tool_table, diagnostics, options.tool_table_path);
-  for (auto& [number, tool] : parse_tool_comments(source, diagnostics))
+  for (auto& [number, tool] : parse_tool_comments(source, context, diagnostics))
     described[number] = tool;
   for (const auto& [number, tool] : options.tools)
     described[number] = tool;
@@ -126,7 +129,8 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
 
   // 2. Tools and stock.
   std::vector<Diagnostic> found;
-  std::map<int, Tool> described = described_tools(source, options, found);
+  scan.tool_comments.dialect = e.dialect;
+  std::map<int, Tool> described = described_tools(source, scan.tool_comments, options, found);
   add_diagnostics(e, found, source.path);
   std::unique_ptr<RemovalSimulator> removal;
   if (options.simulate_removal) {

@@ -1,164 +1,36 @@
-// Tool descriptions in the header comments CAM posts write (Fusion 360/HSM, FreeCAD,
-// Mastercam), and the check that every tool a program uses is described somewhere.
-#include <algorithm>
+// Tool descriptions in the comments CAM posts write (parse_tool_comments in removal.hpp): which
+// reader a comment goes to, and where a tool's number comes from when its comment gives none.
+// The formats themselves are in tool_comment_formats.cpp.
 #include <cmath>
-#include <cstdlib>
-#include <regex>
+#include <iterator>
 
 #include "ncjoule/removal.hpp"
+#include "tool_comment_formats.hpp"
 #include "tool_words.hpp"
 
 namespace ncjoule {
 namespace {
 
-using detail::to_upper;
+using detail::DescribedTool;
+using detail::DescriptionUnits;
 
-struct Comment {
-  std::string text; // without its delimiters
-  int column = 0;   // 1-based position of the opening delimiter
-};
+// Lines around a tool change where a free description belongs to it: FreeCAD writes the tool
+// controller's label up to a few lines before "M6 T2"; posts write the tool's name on the tool
+// change line or next to it.
+constexpr int kLabelLinesBefore = 8;
+constexpr int kNameLinesAround = 2;
 
-// The comments of one line, and the code outside them.
-void split_line(std::string_view line, std::vector<Comment>& comments, std::string& code) {
-  comments.clear();
-  code.clear();
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    if (line[i] == '(') {
-      const std::size_t close = line.find(')', i + 1);
-      const std::size_t end = close == std::string_view::npos ? line.size() : close;
-      comments.push_back({std::string(line.substr(i + 1, end - i - 1)), int(i) + 1});
-      i = end;
-    } else if (line[i] == ';') {
-      comments.push_back({std::string(line.substr(i + 1)), int(i) + 1});
-      break;
-    } else {
-      code += line[i];
-    }
-  }
-}
-
-// G20 anywhere in the code (outside comments) before any G21: the program is in inches.
-bool program_in_inches(const SourceFile& source) {
-  static const std::regex units(R"(G0*(20|21)(?![\d.]))", std::regex::icase);
-  std::vector<Comment> comments;
-  std::string code;
-  for (std::size_t l = 0; l < source.lines.size(); ++l) {
-    split_line(source.line_text(l), comments, code);
-    std::smatch m;
-    if (std::regex_search(code, m, units)) return m[1].str() == "20";
-  }
-  return false;
-}
-
-double number(const std::string& s) {
-  return std::strtod(s.c_str(), nullptr);
-}
-
-// Sets shape and angle from a description, applying a corner radius where one was given.
-void apply_shape(Tool& tool, const std::string& upper_type, std::optional<double> taper_deg,
-                 Diagnostic& note) {
-  const auto guess = detail::guess_shape(upper_type);
-  if (!guess) {
-    note.severity = upper_type.empty() ? Severity::Note : Severity::Warning;
-    note.message = "tool T" + std::to_string(tool.number) +
-                   (upper_type.empty() ? std::string(": no tool type given")
-                                       : ": unknown tool type '" + upper_type + "'") +
-                   ", treated as a flat end mill";
-  }
-  tool.shape = guess ? guess->shape : ToolShape::FlatEndMill;
-  if (tool.shape == ToolShape::Drill || tool.shape == ToolShape::Chamfer) {
-    double angle = guess->default_tip_angle_deg;
-    if (taper_deg)
-      angle = guess->taper_is_half_angle ? 2 * *taper_deg : *taper_deg;
-    else if (auto a = detail::angle_in_description(upper_type))
-      angle = *a;
-    tool.tip_angle_deg = angle;
-  }
-  const double r = tool.radius();
-  if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = r;
-  if (tool.shape == ToolShape::FlatEndMill && tool.corner_radius_mm > 0)
-    tool.shape = tool.corner_radius_mm >= r - 1e-9 ? ToolShape::BallEndMill : ToolShape::BullNose;
-  if (tool.shape == ToolShape::BullNose && tool.corner_radius_mm >= r - 1e-9)
-    tool.shape = ToolShape::BallEndMill;
-}
-
-// Fusion 360 / HSM: "T1 D=6. CR=0. TAPER=118deg - ZMIN=-5. - FLAT END MILL".
-std::optional<Tool> read_fusion(const std::string& upper, double unit, Diagnostic& note) {
-  static const std::regex head(R"(^\s*T(\d+)\s+D=([-+\d.]+))");
-  std::smatch m;
-  if (!std::regex_search(upper, m, head)) return std::nullopt;
-  Tool tool;
-  tool.number = std::atoi(m[1].str().c_str());
-  tool.diameter_mm = number(m[2]) * unit;
-  static const std::regex cr(R"(\bCR=([-+\d.]+))"), taper(R"(\bTAPER=([-+\d.]+)\s*DEG)");
-  if (std::regex_search(upper, m, cr)) tool.corner_radius_mm = number(m[1]) * unit;
-  std::optional<double> taper_deg;
-  if (std::regex_search(upper, m, taper)) taper_deg = number(m[1]);
-  // The type is the last " - " field.
-  const std::size_t dash = upper.rfind(" - ");
-  std::string type = dash == std::string::npos ? std::string() : upper.substr(dash + 3);
-  while (!type.empty() && type.back() == ' ')
-    type.pop_back();
-  tool.description = type;
-  apply_shape(tool, type, taper_deg, note);
-  return tool;
-}
-
-// Mastercam (MPFAN and its descendants):
-//   "1/2 FLAT ENDMILL TOOL - 1 DIA. OFF. - 1 LEN. - 1 DIA. - .5"
-//   " T1 | 1/2 FLAT ENDMILL | H1 | D1 | TOOL DIA. - .5" (any of the later fields may be missing)
-std::optional<Tool> read_mastercam(const std::string& upper, bool inch, Diagnostic& note) {
-  const double unit = inch ? 25.4 : 1.0;
-  static const std::regex classic(R"(^(.*?)\s*\bTOOL\s*-\s*(\d+)\b.*\bDIA\.\s*-\s*([\d.]+))");
-  static const std::regex piped(R"(^\s*T(\d+)\s*\|\s*([^|]*?)\s*(?:\||$))");
-  static const std::regex dia(R"(\bDIA\.?\s*-\s*([\d.]+)\s*$)");
-  std::smatch m;
-  Tool tool;
-  if (std::regex_search(upper, m, classic)) {
-    tool.number = std::atoi(m[2].str().c_str());
-    tool.diameter_mm = number(m[3]) * unit;
-    tool.description = m[1];
-  } else if (std::regex_search(upper, m, piped)) {
-    tool.number = std::atoi(m[1].str().c_str());
-    tool.description = m[2];
-    std::smatch d;
-    if (std::regex_search(upper, d, dia))
-      tool.diameter_mm = number(d[1]) * unit;
-    else if (auto size = detail::size_in_description(tool.description, inch))
-      tool.diameter_mm = *size;
-  } else {
-    return std::nullopt;
-  }
-  static const std::regex corner(R"(\b(?:CORNER\s*RAD(?:IUS)?|CRAD|RAD)\.?\s*[-=]\s*([\d.]+))");
-  if (std::regex_search(upper, m, corner)) tool.corner_radius_mm = number(m[1]) * unit;
-  apply_shape(tool, tool.description, std::nullopt, note);
-  return tool;
-}
-
-// FreeCAD: the tool controller's label, "TC: 6mm Ball End"; its number is on the M6 that
-// follows.
-std::optional<Tool> read_freecad(const std::string& upper, bool inch, Diagnostic& note) {
-  static const std::regex label(R"(^\s*TC\s*:\s*(.*?)\s*$)");
-  std::smatch m;
-  if (!std::regex_search(upper, m, label)) return std::nullopt;
-  Tool tool;
-  tool.description = m[1];
-  if (auto size = detail::size_in_description(tool.description, inch)) tool.diameter_mm = *size;
-  apply_shape(tool, tool.description, std::nullopt, note);
-  return tool;
-}
-
-// The T word of the first tool change at or after `line` (FreeCAD writes "M6 T1" right after
-// the tool controller's comment).
-std::optional<int> next_tool_number(const SourceFile& source, std::size_t line) {
-  // A T word after anything but a letter: "T2", "M6 T2", and posts that glue words ("M6T2").
-  static const std::regex tword(R"((?:^|[^A-Za-z])T\s*(\d+))", std::regex::icase);
-  std::vector<Comment> comments;
-  std::string code;
-  for (std::size_t l = line; l < source.lines.size() && l < line + 8; ++l) {
-    split_line(source.line_text(l), comments, code);
-    std::smatch m;
-    if (std::regex_search(code, m, tword)) return std::atoi(m[1].str().c_str());
+// A comment that names a tool number and its size, in any of the numbered formats.
+std::optional<DescribedTool> read_numbered(const std::string& upper, DescriptionUnits units) {
+  if (upper.find("D=") != std::string::npos)
+    if (auto t = detail::read_fusion_tool(upper, units)) return t;
+  if (upper.find("TOOL") != std::string::npos || upper.find('|') != std::string::npos)
+    if (auto t = detail::read_mastercam_tool(upper, units)) return t;
+  if (upper.find('=') != std::string::npos)
+    if (auto t = detail::read_numbered_list_tool(upper, units)) return t;
+  if (!upper.empty() && upper[0] == 'T') {
+    if (auto t = detail::read_cambam_tool(upper, units)) return t;
+    if (auto t = detail::read_keyed_tool(upper, units)) return t;
   }
   return std::nullopt;
 }
@@ -169,59 +41,149 @@ bool same_geometry(const Tool& a, const Tool& b) {
          close(a.corner_radius_mm, b.corner_radius_mm) && close(a.tip_angle_deg, b.tip_angle_deg);
 }
 
+// Gathers the tools, numbered descriptions first: a description a post writes without a number
+// (next to a tool change, in a list) only fills in a number no numbered comment described.
+class ToolCollector {
+public:
+  ToolCollector(const SourceFile& source, std::vector<Diagnostic>& diagnostics)
+      : source_(source), diagnostics_(diagnostics) {}
+
+  void add(DescribedTool d, int line, int column, bool numbered_format) {
+    Tool& tool = d.tool;
+    const std::string name = "tool T" + std::to_string(tool.number);
+    if (d.remark) {
+      d.remark->file = source_.path;
+      d.remark->line = line + 1;
+      d.remark->column = column;
+      d.remark->message = name + ": " + d.remark->message;
+      diagnostics_.push_back(*d.remark);
+    }
+    if (const std::string problem = tool_problem(tool); !problem.empty()) {
+      say(Severity::Warning, line, column,
+          name + " ('" + tool.description + "') " + problem + ": ignored");
+      return;
+    }
+    auto& into = numbered_format ? numbered_ : unnumbered_;
+    const auto [it, inserted] = into.emplace(tool.number, tool);
+    if (!inserted && !same_geometry(it->second, tool))
+      say(Severity::Warning, line, column,
+          name + " is described again with another geometry; the first description is kept");
+  }
+
+  void say(Severity severity, int line, int column, std::string message) {
+    diagnostics_.push_back({severity, source_.path, line + 1, column, std::move(message)});
+  }
+
+  std::map<int, Tool> take() {
+    std::map<int, Tool> tools = std::move(numbered_);
+    for (auto& [number, tool] : unnumbered_) {
+      const auto [it, inserted] = tools.emplace(number, tool);
+      if (!inserted && !same_geometry(it->second, tool))
+        say(Severity::Note, 0, 0,
+            "tool T" + std::to_string(number) + ": the comment at its tool change ('" +
+                tool.description + "') differs from the tool list; the list is kept");
+    }
+    return tools;
+  }
+
+private:
+  const SourceFile& source_;
+  std::vector<Diagnostic>& diagnostics_;
+  std::map<int, Tool> numbered_, unnumbered_;
+};
+
+// The tool number selected at or after `line` within `span` lines, or at or before it.
+std::optional<int> selected_after(const std::map<int, int>& selected, int line, int span) {
+  const auto it = selected.lower_bound(line);
+  if (it == selected.end() || it->first > line + span) return std::nullopt;
+  return it->second;
+}
+std::optional<int> selected_before(const std::map<int, int>& selected, int line, int span) {
+  auto it = selected.upper_bound(line);
+  if (it == selected.begin()) return std::nullopt;
+  --it;
+  if (it->first < line - span) return std::nullopt;
+  return it->second;
+}
+
 } // namespace
 
-std::map<int, Tool> parse_tool_comments(const SourceFile& source,
-                                        std::vector<Diagnostic>& diagnostics) {
-  std::map<int, Tool> tools;
-  const bool inch = program_in_inches(source);
-  std::vector<Comment> comments;
-  std::string code;
-  for (std::size_t l = 0; l < source.lines.size(); ++l) {
-    split_line(source.line_text(l), comments, code);
-    for (const Comment& c : comments) {
-      const std::string upper = to_upper(c.text);
-      // Cheap filters first: most comments describe no tool.
-      const bool maybe_fusion = upper.find("D=") != std::string::npos;
-      const bool maybe_mastercam =
-          upper.find("TOOL") != std::string::npos || upper.find('|') != std::string::npos;
-      const bool maybe_freecad = upper.find("TC") != std::string::npos;
-      if (!maybe_fusion && !maybe_mastercam && !maybe_freecad) continue;
+void ToolCommentContext::add(const CanonCommand& c) {
+  if (!units_known && (c.kind == CanonKind::LengthUnits || is_move(c.kind))) {
+    inch = c.state.inch;
+    units_known = true;
+  }
+  if (c.kind == CanonKind::SelectTool) selected_tools.emplace(c.line, int(c.value));
+}
 
-      Diagnostic note{Severity::Note, source.path, int(l) + 1, c.column, {}};
-      std::optional<Tool> tool;
-      if (maybe_fusion) tool = read_fusion(upper, inch ? 25.4 : 1.0, note);
-      if (!tool && maybe_mastercam) tool = read_mastercam(upper, inch, note);
-      if (!tool && maybe_freecad) {
-        tool = read_freecad(upper, inch, note);
-        if (tool) {
-          const auto number = next_tool_number(source, l + 1);
-          if (!number) {
-            diagnostics.push_back({Severity::Warning, source.path, int(l) + 1, c.column,
-                                   "tool controller '" + tool->description +
-                                       "' is not followed by a tool change: ignored"});
-            continue;
-          }
-          tool->number = *number;
-        }
-      }
-      if (!tool) continue;
-      if (!note.message.empty()) diagnostics.push_back(note);
-      if (const std::string problem = tool_problem(*tool); !problem.empty()) {
-        diagnostics.push_back({Severity::Warning, source.path, int(l) + 1, c.column,
-                               "tool T" + std::to_string(tool->number) + " ('" + tool->description +
-                                   "') " + problem + ": ignored"});
+std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolCommentContext& context,
+                                        std::vector<Diagnostic>& diagnostics) {
+  const DescriptionUnits units{context.inch};
+  ToolCollector tools(source, diagnostics);
+  // Estlcam's "(Required tools:)" list: the comment-only lines after it, one tool each.
+  bool in_tool_list = false;
+  struct Listed {
+    DescribedTool tool;
+    int line, column;
+  };
+  std::vector<Listed> listed;
+
+  for (std::size_t index = 0; index < source.lines.size(); ++index) {
+    const int line = int(index);
+    const LineComments lc = line_comments(source.line_text(index), context.dialect);
+    if (lc.has_code) in_tool_list = false;
+    for (const LineComment& c : lc.comments) {
+      const std::string upper = detail::to_upper(c.text);
+      if (upper == "REQUIRED TOOLS:") {
+        in_tool_list = true;
         continue;
       }
-      const auto [it, inserted] = tools.emplace(tool->number, *tool);
-      if (!inserted && !same_geometry(it->second, *tool))
-        diagnostics.push_back({Severity::Warning, source.path, int(l) + 1, c.column,
-                               "tool T" + std::to_string(tool->number) +
-                                   " is described again with another geometry; the first "
-                                   "description is kept"});
+      if (in_tool_list) {
+        if (auto t = detail::read_free_tool(upper, units)) listed.push_back({*t, line, c.column});
+        continue;
+      }
+      if (auto t = read_numbered(upper, units)) {
+        tools.add(*t, line, c.column, true);
+        continue;
+      }
+      if (upper.find("TC") != std::string::npos) {
+        if (auto t = detail::read_freecad_tool(upper, units)) {
+          const auto number = selected_after(context.selected_tools, line, kLabelLinesBefore);
+          if (!number) {
+            tools.say(Severity::Warning, line, c.column,
+                      "tool controller '" + t->tool.description +
+                          "' is not followed by a tool change: ignored");
+            continue;
+          }
+          t->tool.number = *number;
+          tools.add(*t, line, c.column, true);
+          continue;
+        }
+      }
+      // A tool's name next to the tool change that selects it: on its line, just before it
+      // (CAMotics, "(Tool: 1/8 in Carbide End Mill)" then "T2 M6"), else just after it
+      // (Vectric, "N120T5M06" then "N130 (Tool: ...)").
+      auto number = selected_after(context.selected_tools, line, kNameLinesAround);
+      if (!number) number = selected_before(context.selected_tools, line, kNameLinesAround);
+      if (number)
+        if (auto t = detail::read_free_tool(upper, units)) {
+          t->tool.number = *number;
+          tools.add(*t, line, c.column, false);
+        }
     }
   }
-  return tools;
+
+  // The list names tools, not numbers: a program that never selects a tool cuts with the one it
+  // lists (tool 0); otherwise the names at its tool changes have numbered them above.
+  if (context.selected_tools.empty() && listed.size() == 1) {
+    listed[0].tool.tool.number = 0;
+    tools.add(listed[0].tool, listed[0].line, listed[0].column, false);
+  } else if (context.selected_tools.empty() && listed.size() > 1) {
+    tools.say(Severity::Warning, listed[0].line, listed[0].column,
+              "the program lists " + std::to_string(listed.size()) +
+                  " tools but selects none: which one cuts is not known; none is used");
+  }
+  return tools.take();
 }
 
 } // namespace ncjoule

@@ -49,14 +49,22 @@ std::optional<ShapeGuess> guess_shape(std::string_view t) {
 }
 
 std::optional<double> size_in_description(std::string_view t, bool inch) {
-  static const std::regex with_unit(R"((\d+(?:\.\d*)?|\.\d+)\s*(MM|IN\b|INCH|"))");
+  // "6mm", "0.25 inch", "1/4\"", "{0.5 inches}" (Vectric), "6 MM".
+  static const std::regex with_unit(R"((?:(\d+)/(\d+)|(\d+(?:\.\d*)?|\.\d+))\s*(MM|IN\b|INCH|"))");
   static const std::regex leading(R"(^\s*(?:(\d+)/(\d+)|(\d+(?:\.\d*)?|\.\d+))(?:\s|$|[^\d/]))");
   std::cmatch m;
   const char* b = t.data();
   const char* e = t.data() + t.size();
   if (std::regex_search(b, e, m, with_unit)) {
-    const double v = std::strtod(m[1].str().c_str(), nullptr);
-    return m[2].str() == "MM" ? v : v * 25.4;
+    double v;
+    if (m[1].matched) {
+      const double den = std::strtod(m[2].str().c_str(), nullptr);
+      if (den == 0) return std::nullopt;
+      v = std::strtod(m[1].str().c_str(), nullptr) / den;
+    } else {
+      v = std::strtod(m[3].str().c_str(), nullptr);
+    }
+    return m[4].str() == "MM" ? v : v * 25.4;
   }
   if (std::regex_search(b, e, m, leading)) {
     double v;

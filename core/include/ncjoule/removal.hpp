@@ -31,16 +31,34 @@ namespace ncjoule {
 // Tools
 // ---------------------------------------------------------------------------------------------
 
-// Reads the tool descriptions CAM posts write into header comments:
-//  - Fusion 360 / HSM: "(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)", with "TAPER=118deg" for
-//    drills (the point angle) and chamfer mills (Fusion's taper angle, measured from the axis:
-//    a 90-degree chamfer mill says TAPER=45deg);
-//  - FreeCAD: a tool controller comment "(TC: 6mm Ball End)" followed by "M6 T2";
-//  - Mastercam: "(1/2 FLAT ENDMILL TOOL - 1 DIA. OFF. - 1 LEN. - 1 DIA. - .5)" and the
-//    "( T1 | 1/2 FLAT ENDMILL | H1 | ... )" form of its newer posts.
-// Sizes are in the program's units (G20 anywhere outside comments means inches) and returned
-// in mm. Comments that look like tool descriptions but cannot be read become warnings.
-std::map<int, Tool> parse_tool_comments(const SourceFile& source,
+// What tool descriptions are read against, learnt by the interpreter: how the program writes
+// comments, its units, and the lines where it selects a tool (a description without a number
+// takes the number selected next to it).
+struct ToolCommentContext {
+  Dialect dialect;
+  bool inch = false;                 // the program's units (its first G20/G21, G70/G71)
+  bool units_known = false;          // set by the first units code or move
+  std::map<int, int> selected_tools; // 0-based source line -> T number selected there
+  // Learns the units and the tool selections from the interpreter's commands, in order.
+  void add(const CanonCommand& command);
+};
+
+// Reads the tool descriptions CAM posts write in comments, in the formats of:
+//  - Fusion 360 / HSM and the posts built on it: "(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)",
+//    "TAPER=118deg" for drills (the point angle) and chamfer mills (measured from the axis);
+//  - Mastercam: "(1/2 FLAT ENDMILL TOOL - 1 DIA. OFF. - 1 LEN. - 1 DIA. - .5)" and
+//    "( T1 | 1/2 FLAT ENDMILL | H1 | ... )";
+//  - CamBam "( T3 : 3.0 )"; Vectric's tool list "(5 = End Mill {0.2500 inch} UpDown)" and the
+//    shop style "(T1 = .5 ENDMILL)";
+//  - a number and a keyed diameter (NX, SolidCAM, SolidWorks CAM): "(T1 D10. R0.5 MILL)",
+//    "(TOOL 3 DIA 12.0 CORNER RAD 1.)", "(T02 - 1/2 FLAT END MILL)";
+//  - FreeCAD's tool controller "(TC: 6mm Ball End)", numbered by the tool change after it;
+//  - a description with a size next to a tool change ("T2 M6 (Change tool: End mill 6mm)",
+//    Estlcam; "(Tool: End Mill {0.25 inch})" on the line after, Vectric), and Estlcam's
+//    "(Required tools:)" list, which stands for tool 0 when the program selects none.
+// Sizes are in the program's units and returned in mm. Comments that look like tool
+// descriptions but cannot be used become warnings.
+std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolCommentContext& context,
                                         std::vector<Diagnostic>& diagnostics);
 
 // Which tool each move cuts with: the tools `described` (tool table, CAM comments, job file,

@@ -1,0 +1,221 @@
+// Readers of the tool descriptions CAM posts write (tool_comment_formats.hpp). The patterns are
+// taken from what each post writes; where a post has several styles, each one is here.
+#include "tool_comment_formats.hpp"
+
+#include <cstdlib>
+#include <regex>
+
+#include "tool_words.hpp"
+
+namespace ncjoule::detail {
+namespace {
+
+double number(const std::string& s) {
+  return std::strtod(s.c_str(), nullptr);
+}
+
+std::string trim(std::string s) {
+  const std::size_t first = s.find_first_not_of(" \t,-:");
+  if (first == std::string::npos) return {};
+  const std::size_t last = s.find_last_not_of(" \t,-:");
+  return s.substr(first, last - first + 1);
+}
+
+// Sets shape and tip angle from the tool's type words, with its corner radius where one was
+// given; a remark when the type is missing or unknown (read as a flat end mill).
+void apply_shape(DescribedTool& d, const std::string& upper_type,
+                 std::optional<double> taper_deg = std::nullopt) {
+  Tool& tool = d.tool;
+  const auto guess = guess_shape(upper_type);
+  if (!guess) {
+    Diagnostic remark;
+    remark.severity = upper_type.empty() ? Severity::Note : Severity::Warning;
+    remark.message = (upper_type.empty() ? std::string("no tool type given")
+                                         : "unknown tool type '" + upper_type + "'") +
+                     ", treated as a flat end mill";
+    d.remark = remark;
+  }
+  tool.shape = guess ? guess->shape : ToolShape::FlatEndMill;
+  if (tool.shape == ToolShape::Drill || tool.shape == ToolShape::Chamfer) {
+    double angle = guess->default_tip_angle_deg;
+    if (taper_deg)
+      angle = guess->taper_is_half_angle ? 2 * *taper_deg : *taper_deg;
+    else if (auto a = angle_in_description(upper_type))
+      angle = *a;
+    tool.tip_angle_deg = angle;
+  }
+  const double r = tool.radius();
+  if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = r;
+  if (tool.shape == ToolShape::FlatEndMill && tool.corner_radius_mm > 0)
+    tool.shape = tool.corner_radius_mm >= r - 1e-9 ? ToolShape::BallEndMill : ToolShape::BullNose;
+  if (tool.shape == ToolShape::BullNose && tool.corner_radius_mm >= r - 1e-9)
+    tool.shape = ToolShape::BallEndMill;
+}
+
+// A number as posts write it: "6", "6.", ".5", "0.25".
+#define NCJ_NUMBER R"((\d+(?:\.\d*)?|\.\d+))"
+
+// A corner radius written with a key: "CR=1", "CORNER RAD 1.", "RAD. - .03", "R0.5" (a bare R
+// needs a decimal point or "=", so "R1" offset words and "R" in words are not read).
+std::optional<double> keyed_corner_radius(const std::string& upper) {
+  static const std::regex keyed(R"((?:^|[^A-Z])(?:CR|CRAD|RAD|RADIUS|CORNER\s*RAD(?:IUS)?)\.?)"
+                                R"([\s=:\-]*)" NCJ_NUMBER);
+  static const std::regex bare_r(R"((?:^|[^A-Z])R(?:\s*=\s*)" NCJ_NUMBER R"(|(\d*\.\d*)))");
+  std::smatch m;
+  if (std::regex_search(upper, m, keyed)) return number(m[1]);
+  if (std::regex_search(upper, m, bare_r)) return number(m[1].matched ? m[1] : m[2]);
+  return std::nullopt;
+}
+
+// A diameter written with a key: "DIA 12", "DIA. - .5", "DIAMETER: 6", "Ø6", "D=6", "D10."
+// (a bare D needs a decimal point or "=": "D1" is a cutter compensation offset).
+std::optional<double> keyed_diameter(const std::string& upper) {
+  static const std::regex keyed(
+      R"((?:^|[^A-Z])(?:DIA|DIAM|DIAMETER|\xC3\x98)\.?[\s=:\-]*)" NCJ_NUMBER);
+  static const std::regex bare_d(R"((?:^|[^A-Z])D(?:\s*=\s*)" NCJ_NUMBER R"(|(\d*\.\d*)))");
+  std::smatch m;
+  if (std::regex_search(upper, m, keyed)) return number(m[1]);
+  if (std::regex_search(upper, m, bare_d)) return number(m[1].matched ? m[1] : m[2]);
+  return std::nullopt;
+}
+
+} // namespace
+
+std::optional<DescribedTool> read_fusion_tool(const std::string& upper, DescriptionUnits units) {
+  static const std::regex head(R"(^\s*T(\d+)\s+D=)" NCJ_NUMBER);
+  std::smatch m;
+  if (!std::regex_search(upper, m, head)) return std::nullopt;
+  DescribedTool d;
+  Tool& tool = d.tool;
+  tool.number = std::atoi(m[1].str().c_str());
+  tool.diameter_mm = number(m[2]) * units.mm_per_unit();
+  static const std::regex cr(R"(\bCR=)" NCJ_NUMBER), taper(R"(\bTAPER=)" NCJ_NUMBER R"(\s*DEG)");
+  if (std::regex_search(upper, m, cr)) tool.corner_radius_mm = number(m[1]) * units.mm_per_unit();
+  std::optional<double> taper_deg;
+  if (std::regex_search(upper, m, taper)) taper_deg = number(m[1]);
+  // The type is the last " - " field.
+  const std::size_t dash = upper.rfind(" - ");
+  tool.description = dash == std::string::npos ? std::string() : trim(upper.substr(dash + 3));
+  apply_shape(d, tool.description, taper_deg);
+  return d;
+}
+
+std::optional<DescribedTool> read_mastercam_tool(const std::string& upper, DescriptionUnits units) {
+  static const std::regex classic(R"(^(.*?)\s*\bTOOL\s*-\s*(\d+)\b.*\bDIA\.\s*-\s*)" NCJ_NUMBER);
+  static const std::regex piped(R"(^\s*T(\d+)\s*\|\s*([^|]*?)\s*(?:\||$))");
+  static const std::regex dia(R"(\bDIA\.?\s*-\s*)" NCJ_NUMBER R"(\s*$)");
+  std::smatch m;
+  DescribedTool d;
+  Tool& tool = d.tool;
+  if (std::regex_search(upper, m, classic)) {
+    tool.number = std::atoi(m[2].str().c_str());
+    tool.diameter_mm = number(m[3]) * units.mm_per_unit();
+    tool.description = m[1];
+  } else if (std::regex_search(upper, m, piped)) {
+    tool.number = std::atoi(m[1].str().c_str());
+    tool.description = m[2];
+    std::smatch dm;
+    if (std::regex_search(upper, dm, dia))
+      tool.diameter_mm = number(dm[1]) * units.mm_per_unit();
+    else if (auto size = size_in_description(tool.description, units.inch))
+      tool.diameter_mm = *size;
+  } else {
+    return std::nullopt;
+  }
+  if (auto r = keyed_corner_radius(upper)) tool.corner_radius_mm = *r * units.mm_per_unit();
+  apply_shape(d, tool.description);
+  return d;
+}
+
+std::optional<DescribedTool> read_cambam_tool(const std::string& upper, DescriptionUnits units) {
+  static const std::regex with_colon(R"(^T(\d+)\s*:\s*)" NCJ_NUMBER R"((?:\s+(.*))?$)");
+  static const std::regex bare(R"(^T(\d+)\s+)" NCJ_NUMBER R"($)");
+  std::smatch m;
+  if (!std::regex_match(upper, m, with_colon) && !std::regex_match(upper, m, bare))
+    return std::nullopt;
+  DescribedTool d;
+  d.tool.number = std::atoi(m[1].str().c_str());
+  d.tool.diameter_mm = number(m[2]) * units.mm_per_unit();
+  d.tool.description = m.size() > 3 && m[3].matched ? trim(m[3]) : std::string();
+  // CamBam's tool comment is free text: "surfacing bit" names no shape; a flat end mill then,
+  // with only a note (its lists are mostly end mills).
+  apply_shape(d, d.tool.description);
+  if (d.remark) d.remark->severity = Severity::Note;
+  return d;
+}
+
+std::optional<DescribedTool> read_numbered_list_tool(const std::string& upper,
+                                                     DescriptionUnits units) {
+  static const std::regex entry(R"(^T?\s*(\d+)\s*=\s*(.+)$)");
+  std::smatch m;
+  if (!std::regex_match(upper, m, entry)) return std::nullopt;
+  const std::string text = trim(m[2]);
+  DescribedTool d;
+  d.tool.number = std::atoi(m[1].str().c_str());
+  d.tool.description = text;
+  if (auto dia = keyed_diameter(text))
+    d.tool.diameter_mm = *dia * units.mm_per_unit();
+  else if (auto size = size_in_description(text, units.inch))
+    d.tool.diameter_mm = *size;
+  else
+    return std::nullopt;
+  if (auto r = keyed_corner_radius(text)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
+  apply_shape(d, text);
+  if (d.remark) d.remark->severity = Severity::Note; // free text: a missing type is no fault
+  return d;
+}
+
+std::optional<DescribedTool> read_keyed_tool(const std::string& upper, DescriptionUnits units) {
+  static const std::regex head(
+      R"(^\s*(?:T|TOOL\s*(?:NO\.?|NUMBER|#)?)\s*[#:.\-]?\s*0*(\d+)(?=[\s\-:,]|$)\s*[-:,]?\s*(.*)$)");
+  std::smatch m;
+  if (!std::regex_match(upper, m, head)) return std::nullopt;
+  const std::string rest = trim(m[2]);
+  DescribedTool d;
+  d.tool.number = std::atoi(m[1].str().c_str());
+  d.tool.description = rest;
+  if (auto dia = keyed_diameter(rest))
+    d.tool.diameter_mm = *dia * units.mm_per_unit();
+  else if (auto size = size_in_description(rest, units.inch))
+    d.tool.diameter_mm = *size;
+  else
+    return std::nullopt;
+  if (auto r = keyed_corner_radius(rest)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
+  apply_shape(d, rest);
+  if (d.remark) d.remark->severity = Severity::Note; // free text: a missing type is no fault
+  return d;
+}
+
+std::optional<DescribedTool> read_freecad_tool(const std::string& upper, DescriptionUnits units) {
+  static const std::regex label(R"(^\s*TC\s*:\s*(.*?)\s*$)");
+  std::smatch m;
+  if (!std::regex_search(upper, m, label)) return std::nullopt;
+  DescribedTool d;
+  d.numbered = false;
+  d.tool.description = m[1];
+  if (auto size = size_in_description(d.tool.description, units.inch)) d.tool.diameter_mm = *size;
+  apply_shape(d, d.tool.description);
+  return d;
+}
+
+std::optional<DescribedTool> read_free_tool(const std::string& upper, DescriptionUnits units) {
+  static const std::regex prefix(R"(^\s*(?:CHANGE\s+TOOL|TOOL\s*CHANGE|TOOL)\s*:\s*)");
+  const std::string text = trim(std::regex_replace(upper, prefix, ""));
+  if (!guess_shape(text)) return std::nullopt;
+  DescribedTool d;
+  d.numbered = false;
+  d.tool.description = text;
+  if (auto dia = keyed_diameter(text))
+    d.tool.diameter_mm = *dia * units.mm_per_unit();
+  else if (auto size = size_in_description(text, units.inch))
+    d.tool.diameter_mm = *size;
+  else
+    return std::nullopt;
+  if (auto r = keyed_corner_radius(text)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
+  apply_shape(d, text);
+  return d;
+}
+
+#undef NCJ_NUMBER
+
+} // namespace ncjoule::detail

@@ -5,7 +5,8 @@
 # The wrapped post does all the work; this script only runs
 #     ncjoule annotate FILE --machine PROFILE --in-place        (output to a file), or
 #     ncjoule annotate - --machine PROFILE                       (FreeCAD asks for a string: "-")
-# on its output. When ncjoule is missing, not configured or fails, the post's output is returned
+# on its output, with a --tool N:TYPE:DIAMETER for each tool controller's tool (its shape and
+# sizes as FreeCAD holds them). When ncjoule is missing, not configured or fails, the post's output is returned
 # and written exactly as the wrapped post made it, with a warning in the report view saying why:
 # the wrapper never makes a post fail.
 import argparse
@@ -90,12 +91,81 @@ def _job_stock(objectslist):
     return None
 
 
+# FreeCAD tool bit shapes (ShapeName, or the file name of the bit's shape) and the tool types of
+# its legacy tools, as ncjoule --tool names them.
+_TOOL_SHAPES = {
+    "endmill": "flat", "ballend": "ball", "bullnose": "bullnose", "torus": "bullnose",
+    "drill": "drill", "centerdrill": "drill", "countersink": "chamfer", "chamfer": "chamfer",
+    "v-bit": "chamfer", "vbit": "chamfer", "engraver": "chamfer", "chamfermill": "chamfer",
+    "ballendmill": "ball", "slotcutter": "flat", "reamer": "flat", "flycutter": "flat",
+}
+
+
+def _number(value):
+    """A float from a FreeCAD Quantity (its Value, in mm or degrees), a number, or "6.0 mm"."""
+    value = getattr(value, "Value", value)
+    if isinstance(value, str):
+        value = value.split()[0] if value.split() else ""
+    return float(value)
+
+
+def _tool_spec(number, tool):
+    """--tool N:TYPE:DIAMETER[:EXTRA...] for a tool controller's tool, or None when its shape is
+    one ncjoule does not model (a probe, a thread mill, a slitting saw): the program's comments
+    and the profile then speak for it."""
+    name = getattr(tool, "ShapeName", "") or os.path.splitext(
+        os.path.basename(str(getattr(tool, "BitShape", ""))))[0] or getattr(tool, "ToolType", "")
+    shape = _TOOL_SHAPES.get(str(name).lower().replace("_", "").replace(" ", ""))
+    if shape is None:
+        return None
+    try:
+        diameter = _number(tool.Diameter)
+        if not diameter > 0:
+            return None
+        spec = "%d:%s:%g" % (number, shape, diameter)
+        if shape == "bullnose":
+            corner = diameter / 2 - _number(getattr(tool, "FlatRadius", diameter / 2))
+            spec = spec + ":%g" % corner if corner > 0 else "%d:flat:%g" % (number, diameter)
+        elif shape == "drill" and hasattr(tool, "TipAngle"):
+            spec += ":%g" % _number(tool.TipAngle)
+        elif shape == "chamfer" and hasattr(tool, "CuttingEdgeAngle"):
+            spec += ":%g" % _number(tool.CuttingEdgeAngle)
+            if hasattr(tool, "TipDiameter"):
+                spec += ":%g" % _number(tool.TipDiameter)
+    except (AttributeError, TypeError, ValueError, IndexError):
+        return None
+    return spec
+
+
+def _job_tools(objectslist):
+    """--tool arguments for the tool controllers of the posted objects: their shapes and sizes as
+    FreeCAD holds them, so ncjoule need not read them back from the labels ("TC: 6mm Endmill")."""
+    specs = {}
+    for obj in objectslist:
+        controller = getattr(obj, "ToolController", None) or (
+            obj if hasattr(obj, "ToolNumber") and hasattr(obj, "Tool") else None)
+        if controller is None:
+            continue
+        try:
+            number = int(controller.ToolNumber)
+        except (AttributeError, TypeError, ValueError):
+            continue
+        spec = _tool_spec(number, getattr(controller, "Tool", None))
+        if spec and number not in specs:
+            specs[number] = spec
+    args = []
+    for number in sorted(specs):
+        args += ["--tool", specs[number]]
+    return args
+
+
 class _Settings:
     def __init__(self, known, objectslist):
         self.post = known.post or os.environ.get("NCJOULE_POST") or "linuxcnc"
         self.machine = known.machine or os.environ.get("NCJOULE_MACHINE") or ""
         self.program = known.ncjoule or os.environ.get("NCJOULE") or "ncjoule"
         self.stock = known.stock or os.environ.get("NCJOULE_STOCK") or _job_stock(objectslist)
+        self.tools = _job_tools(objectslist)
         self.extra = shlex.split(known.ncjoule_args or os.environ.get("NCJOULE_ARGS", ""))
         self.enabled = not known.no_ncjoule and os.environ.get("NCJOULE_DISABLE", "") not in (
             "1", "yes", "true", "on")
@@ -116,7 +186,7 @@ class _Settings:
         cmd = [self.program, "annotate", source, "--machine", self.machine]
         if self.stock:
             cmd += ["--stock", self.stock]
-        return cmd + self.extra
+        return cmd + self.tools + self.extra
 
 
 def _run(cmd, text=None):

@@ -72,7 +72,8 @@ def G(code, **params):
     return Path.Command(code, {k.upper(): float(v) for k, v in params.items()})
 
 
-def job():
+def job(tool=None):
+    """The job; `tool` replaces the controller's 6 mm end mill (its label stays "6mm Endmill")."""
     label = "TC: 6mm Endmill"
     tc = Obj("ToolController", label, toolchange_generator.generate(
         1, label, 8000, toolchange_generator.SpindleDirection.CW))
@@ -80,7 +81,7 @@ def job():
     tc.ToolNumber = 1
     tc.SpindleSpeed = 8000
     tc.SpindleDir = "Forward"
-    tc.Tool = Tool(6.0, "EndMill")
+    tc.Tool = tool or Tool(6.0, "EndMill")
     tc.HorizFeed = Quantity(1200 / 60.0)
     tc.VertFeed = Quantity(300 / 60.0)
     tc.HorizRapid = Quantity(0)
@@ -127,10 +128,14 @@ def annotated(text):
 def args(post, *more):
     words = ["--post=" + post, "--machine=" + MACHINE, "--ncjoule=" + NCJOULE,
              "--stock=" + STOCK, "--no-header", "--no-show-editor"]
-    if post == "grbl":
-        # grbl's output names no tool ncjoule can read: predict time and energy without removal
-        words.append("--ncjoule-args=--no-removal")
     return " ".join(words + list(more))
+
+
+def removed_mm3(text):
+    """The volume the annotation header says was removed."""
+    import re
+    m = re.search(r"VOL_MM3=([0-9.eE+-]+)", text)
+    return float(m.group(1)) if m else None
 
 
 def run_case(name, body):
@@ -157,6 +162,8 @@ def main():
             with open(out, newline="") as f:
                 text = f.read()
             check(annotated(text), "%s: file output not annotated:\n%s" % (post, text[:300]))
+            # The tool controller's tool reaches ncjoule (grbl's output names none).
+            check((removed_mm3(text) or 0) > 0, "%s: nothing removed:\n%s" % (post, text[:300]))
             check(strip(text, folder) == reference, "%s: strip(file) is not the post's output" % post)
             if result is not None:
                 check(result == text, "%s: returned text differs from the file written" % post)
@@ -205,6 +212,33 @@ def main():
             check(f.read() == reference, "--no-ncjoule: the file is not the post's output")
         check(not annotated(result), "--no-ncjoule: annotated anyway")
 
+    def controller_geometry():
+        # A ball end mill whose controller is labelled "6mm Endmill": the wrapper passes the tool
+        # itself, so the cut is a ball's (less volume than the flat end mill's at the same path).
+        ball = Tool(6.0, "BallEnd")
+        ball.ShapeName = "ballend"
+        volumes = {}
+        for name, objs in (("flat", objects), ("ball", job(ball))):
+            out = os.path.join(folder, "geometry-%s.nc" % name)
+            ncjoule_post.export(objs, out, args("linuxcnc"))
+            with open(out, newline="") as f:
+                volumes[name] = removed_mm3(f.read())
+        check(None not in volumes.values(), "tool geometry: no volume in the header: %s" % volumes)
+        if None not in volumes.values():
+            check(0 < volumes["ball"] < 0.9 * volumes["flat"],
+                  "tool geometry: the ball removed %s mm^3, the flat %s" % (volumes["ball"],
+                                                                          volumes["flat"]))
+        check(ncjoule_post._tool_spec(3, ball) == "3:ball:6", "ball spec")
+        bull = Tool(6.0, "Bullnose")
+        bull.ShapeName, bull.FlatRadius = "bullnose", Quantity(1.5)
+        check(ncjoule_post._tool_spec(4, bull) == "4:bullnose:6:1.5", "bullnose spec")
+        vbit = Tool(Quantity(10.0), "V-Bit")
+        vbit.ShapeName, vbit.CuttingEdgeAngle, vbit.TipDiameter = "v-bit", Quantity(60), Quantity(1)
+        check(ncjoule_post._tool_spec(5, vbit) == "5:chamfer:10:60:1", "v-bit spec")
+        probe = Tool(2.0, "Probe")
+        check(ncjoule_post._tool_spec(6, probe) is None, "a probe is not passed as a tool")
+
+    run_case("the tool controller's tool shape and size reach ncjoule", controller_geometry)
     run_case("a missing ncjoule only warns", missing_ncjoule)
     run_case("a failing ncjoule only warns", failing_ncjoule)
     run_case("--no-ncjoule posts without annotating", turned_off)

@@ -1,13 +1,16 @@
 #include "estimate_settings.hpp"
 
+#include <cctype>
 #include <cmath>
-
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <unistd.h>
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "ncjoule/profile.hpp"
+#include "user_config.hpp"
 
 namespace ncjoule::cli {
 
@@ -30,17 +33,21 @@ CLI::Validator finite_between(double low, double high) {
 } // namespace
 
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
-  cmd.add_option("-m,--machine", s.machine, "Machine profile (.toml)")->required();
+  cmd.add_option("-m,--machine", s.machine,
+                 "Machine profile (.toml); default: the user config's (machine = ...), else the "
+                 "generic 3-axis profile");
   cmd.add_option("--dialect", s.dialect,
                  "Controller dialect (auto, linuxcnc, fanuc, haas, grbl, mach3, siemens, "
                  "heidenhain, reprap); default: the machine profile's (auto: detected from the "
                  "file)");
   cmd.add_option("--stock", s.stock,
                  "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; default: the "
-                 "job file's, else the bounding box of the cutting moves");
+                 "job file's, else PROGRAM.stock, else the user config's, else the bounding box "
+                 "of the cutting moves");
   cmd.add_option("--job", s.job,
                  "Job file (TOML): stock = \"box:...\" or stock_stl = \"part.stl\", and "
-                 "[[tool]] entries; --stock and --tool override it");
+                 "[[tool]] entries; --stock and --tool override it; default: PROGRAM.ncjoule.toml "
+                 "next to the program");
   cmd.add_option("--tool", s.tools,
                  "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
                  "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
@@ -54,8 +61,8 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "LinuxCNC tool table (.tbl): lengths for G43, and a tool for every entry with "
                  "a diameter (its comment names the shape, else a flat end mill)");
   cmd.add_option("--tool-units", s.tool_units,
-                 "Units of the tool table's lengths and diameters (the machine's units): mm or "
-                 "inch")
+                 "Units of the tool table's lengths and diameters (the machine's units): mm "
+                 "(default) or inch")
       ->check(CLI::IsMember({"mm", "inch"}));
   cmd.add_option("--engine", s.engine, "Removal engine: dexel (default) or voxel")
       ->check(CLI::IsMember({"dexel", "voxel"}));
@@ -74,7 +81,21 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(finite_between(0, 1e6));
 }
 
-bool load_machine(const std::string& path, MachineProfile& machine) {
+bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
+  const auto& config = user_config();
+  if (!config) return false;
+  std::string path = s.machine.empty() ? config->machine : s.machine;
+  if (path.empty()) {
+    path = default_machine_profile();
+    if (path.empty()) {
+      std::cerr << "ncjoule: no machine profile: give --machine PROFILE, or machine = \"...\" in "
+                << user_config_path() << "\n";
+      return false;
+    }
+    std::cerr << "ncjoule: note: no machine profile given, the generic 3-axis one is used (" << path
+              << "); give yours with --machine or machine = \"...\" in " << user_config_path()
+              << "\n";
+  }
   try {
     machine = load_profile(path);
     return true;
@@ -90,7 +111,43 @@ std::size_t default_memory_budget_bytes() {
   return std::size_t(pages) * std::size_t(page) / 4;
 }
 
-std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& exit_code) {
+// The settings with what the command line left open filled in from the program's own files
+// and the user config (user_config.hpp says which wins).
+std::optional<EstimateSettings> completed(EstimateSettings s, const std::string& program) {
+  const auto& config = user_config();
+  if (!config) return std::nullopt;
+  if (s.dialect.empty()) s.dialect = config->dialect;
+  if (s.tool_table.empty()) {
+    s.tool_table = config->tool_table;
+    if (s.tool_units.empty()) s.tool_units = config->tool_units;
+  }
+  if (s.job.empty()) s.job = program_job_file(program);
+  if (s.stock.empty()) {
+    if (const std::string file = program_stock_file(program); !file.empty()) {
+      std::ifstream in(file);
+      std::string line;
+      std::getline(in, line);
+      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
+        line.pop_back();
+      if (line.empty()) {
+        std::cerr << "ncjoule: " << file << " is empty: give one stock (box:... or an STL file)\n";
+        return std::nullopt;
+      }
+      s.program_stock = line.rfind("box:", 0) == 0
+                            ? line
+                            : (std::filesystem::path(file).parent_path() / line).string();
+    }
+  }
+  s.config_stock = config->stock;
+  s.config_material = config->material;
+  return s;
+}
+
+std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
+                                                const std::string& program, int& exit_code) {
+  const std::optional<EstimateSettings> settings = completed(given, program);
+  if (!settings) return exit_code = kInputError, std::nullopt;
+  const EstimateSettings& s = *settings;
   EstimateOptions options;
   if (s.dialect == "auto") {
     options.detect_dialect = true;
@@ -126,6 +183,18 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& 
     options.material = job->material;
   }
   if (!s.material.empty()) options.material = s.material;
+  if (options.material.empty()) options.material = s.config_material;
+  // Stock: --stock, the job file's, PROGRAM.stock, the user config's.
+  for (const std::string* text : {&s.stock, &s.program_stock, &s.config_stock}) {
+    if (text->empty() || (text != &s.stock && options.stock)) continue;
+    std::string error;
+    options.stock = parse_stock_spec(*text, &error);
+    if (!options.stock) {
+      std::cerr << "ncjoule: bad stock '" << *text << "': " << error << '\n';
+      return exit_code = kUsage, std::nullopt;
+    }
+    break;
+  }
   for (const std::string& text : s.tools) {
     std::string error;
     const auto tool = parse_tool_spec(text, &error);
@@ -134,14 +203,6 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& s, int& 
       return exit_code = kUsage, std::nullopt;
     }
     options.tools[tool->number] = *tool;
-  }
-  if (!s.stock.empty()) {
-    std::string error;
-    options.stock = parse_stock_spec(s.stock, &error);
-    if (!options.stock) {
-      std::cerr << "ncjoule: bad --stock '" << s.stock << "': " << error << '\n';
-      return exit_code = kUsage, std::nullopt;
-    }
   }
   options.removal.engine = s.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
   options.removal.grid_mm = s.grid_mm;

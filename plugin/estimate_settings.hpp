@@ -20,12 +20,14 @@ struct EstimateSettings {
   std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
   std::string tool_table;         // LinuxCNC .tbl
   std::string material;           // workpiece material; empty: the job file's, else the profile's
-  std::string tool_units = "mm";  // units of the tool table
+  std::string tool_units;         // units of the tool table: "mm" (empty) or "inch"
   std::string engine = "dexel";
   double grid_mm = 0;
   double memory_limit_mib = 0; // 0: a quarter of the machine's memory
   bool no_removal = false;
   std::optional<double> co2_kg_per_kwh, price_per_kwh;
+  // Filled in by estimate_options from the program's .stock file and the user config.
+  std::string program_stock, config_stock, config_material;
 };
 
 // Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --engine,
@@ -35,12 +37,16 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
 // A quarter of this machine's physical memory: the default budget of the stock model.
 std::size_t default_memory_budget_bytes();
 
-// Loads the machine profile; prints why and returns false when it is wrong.
-bool load_machine(const std::string& path, MachineProfile& machine);
+// Loads the machine profile: --machine, else the user config's, else the generic one (with a
+// note); prints why and returns false when it is wrong.
+bool load_machine(const EstimateSettings& settings, MachineProfile& machine);
 
-// The pipeline's options from the settings. Tools: the job file's, then the command line's, each
-// replacing the one before (and the program's header comments) for the same number; --stock
-// replaces the job's stock. On a bad setting it prints why, sets `exit_code` and returns nullopt.
-std::optional<EstimateOptions> estimate_options(const EstimateSettings& settings, int& exit_code);
+// The pipeline's options for one program ("-": standard input) from the settings, completed from
+// the program's own files and the user config (user_config.hpp). Tools: the job file's, then the
+// command line's, each replacing the one before (and the program's header comments) for the same
+// number. Stock: --stock, the job file's, PROGRAM.stock, the user config's. On a bad setting it
+// prints why, sets `exit_code` and returns nullopt.
+std::optional<EstimateOptions> estimate_options(const EstimateSettings& settings,
+                                                const std::string& program, int& exit_code);
 
 } // namespace ncjoule::cli

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   using namespace ncjoule::cli;
   CLI::App app{"ncjoule: predicts the time and energy of a CNC milling program before it runs"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("ncjoule ") + NCJOULE_VERSION);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log what ncjoule does (to stderr)");
   // Logs go to stderr (ncjoule::logger()): stdout carries the program's output (listings, JSON).

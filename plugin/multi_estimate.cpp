@@ -12,13 +12,16 @@ namespace ncjoule::cli {
 int estimate_files(const std::vector<std::string>& files, const EstimateSettings& s,
                    MachineProfile& machine, std::vector<EstimatedProgram>& programs) {
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(s, status);
-  if (!options) return status;
-  if (!load_machine(s.machine, machine)) return kInputError;
+  if (!load_machine(s, machine)) return kInputError;
 
-  // Read everything first, so that a missing file is reported before minutes of estimating.
+  // Read everything first, so that a missing file or a bad setting is reported before minutes of
+  // estimating. Each program has its options: its own job and stock files.
   std::vector<SourceFile> sources;
+  std::vector<EstimateOptions> options;
   for (const std::string& file : files) {
+    auto these = estimate_options(s, file, status);
+    if (!these) return status;
+    options.push_back(std::move(*these));
     auto source = read_source(file);
     if (!source) return kInputError;
     sources.push_back(std::move(*source));
@@ -26,7 +29,7 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
   ProgressBar progress("estimating", sources.size());
   for (std::size_t i = 0; i < sources.size(); ++i) {
     progress.begin(i, sources[i].path);
-    EstimateOptions with_progress = *options;
+    EstimateOptions with_progress = options[i];
     with_progress.progress = progress.callback();
     Estimate e = estimate_program(sources[i], machine, with_progress);
     programs.push_back({std::move(sources[i]), std::move(e)});

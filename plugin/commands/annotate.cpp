@@ -37,10 +37,10 @@ int run_annotate(const AnnotateCliOptions& o) {
     return kUsage;
   }
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(o.settings, status);
+  const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
   if (!options) return status;
   MachineProfile machine;
-  if (!load_machine(o.settings.machine, machine)) return kInputError;
+  if (!load_machine(o.settings, machine)) return kInputError;
   const auto input = read_source(o.file);
   if (!input) return kInputError;
 

@@ -104,10 +104,10 @@ void print_operations(const Estimate& e) {
 
 int run_estimate(const EstimateCliOptions& o) {
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(o.settings, status);
+  const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
   if (!options) return status;
   MachineProfile machine;
-  if (!load_machine(o.settings.machine, machine)) return kInputError;
+  if (!load_machine(o.settings, machine)) return kInputError;
   auto source = read_source(o.file);
   if (!source) return kInputError;
 

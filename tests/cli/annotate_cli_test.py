@@ -205,7 +205,11 @@ def msg_comments():
 def streams_and_in_place():
     original = read(SAMPLE)
     by_file = run("annotate", SAMPLE, "--machine", GENERIC)
-    by_stdin = run("annotate", "-", "--machine", GENERIC, stdin=original)
+    # The file's stock comes from its .stock file next to it; standard input has none.
+    sidecar = os.path.splitext(SAMPLE)[0] + ".stock"
+    with open(sidecar) as f:
+        stock = f.read().strip()
+    by_stdin = run("annotate", "-", "--machine", GENERIC, "--stock", stock, stdin=original)
     check(by_file.returncode == 0 and by_stdin.returncode == 0, "annotate from a file and from -")
     check(by_file.stdout == by_stdin.stdout, "stdin gives the same annotation as the file")
     stripped = run("strip", "-", "-o", "-", stdin=by_stdin.stdout)
@@ -213,6 +217,7 @@ def streams_and_in_place():
     with tempfile.TemporaryDirectory() as d:
         path = os.path.join(d, "part.ngc")
         shutil.copy(SAMPLE, path)
+        shutil.copy(sidecar, os.path.join(d, "part.stock"))
         os.chmod(path, 0o640)
         r = run("annotate", path, "--machine", GENERIC, "--in-place")
         check(r.returncode == 0 and read(path) == by_file.stdout, "annotate --in-place")

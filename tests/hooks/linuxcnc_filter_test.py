@@ -146,9 +146,31 @@ def main():
         r.returncode, r.stderr.decode()))
     check(r.stdout == original, "missing ncjoule: the program is not shown")
 
-    case("no machine profile: the program as it is, and why")
+    case("no machine profile: ncjoule's generic one, and a note saying so")
     r = run_filter("%s --ncjoule %s" % (q(FILTER), q(NCJOULE)), program_file)
-    check(r.returncode == 0 and "no machine profile" in r.stderr.decode(), "no profile: %r" % r.stderr.decode())
+    check(r.returncode == 0 and annotated(r.stdout), "no profile: not annotated: %r" % r.stderr.decode())
+    check("no machine profile given" in r.stderr.decode(), "no profile: no note: %r" % r.stderr.decode())
+
+    case("a program's own stock file wins over the INI's one STOCK")
+    own = os.path.join(folder, "own.ngc")
+    shutil.copyfile(SAMPLE, own)
+    with open(os.path.join(folder, "own.stock"), "w") as f:
+        f.write("box:0,0,-20,200,40,-1\n")  # its top 1 mm lower: less is cut
+    r = run_filter(q(FILTER), own, {"INI_FILE_NAME": ini})
+    check(r.returncode == 0 and annotated(r.stdout), "own stock: exit %d" % r.returncode)
+    versions = {}
+    for name, args in (("own", []), ("ini", ["--stock", STOCK])):
+        e = subprocess.run([NCJOULE, "annotate", own, "--machine", os.path.join(ini_dir, "mill.toml")]
+                           + args, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        versions[name] = e.stdout
+    def volume(text):
+        m = re.search(rb"VOL_MM3=([0-9.]+)", text)
+        return float(m.group(1)) if m else None
+    check(volume(versions["own"]) != volume(versions["ini"]),
+          "own stock: the two stocks cut the same volume")
+    check(volume(r.stdout) == volume(versions["own"]), "own stock: the filter used the INI's STOCK "
+          "(%r, own %r)" % (volume(r.stdout), volume(versions["own"])))
+    os.remove(os.path.join(folder, "own.stock"))
 
     case("file names that look like options are files")
     for name in ("-h", "-", "-o.ngc", "--help"):

@@ -1,0 +1,161 @@
+#include "user_config.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <toml++/toml.h>
+#include <unistd.h>
+
+#include "cli_support.hpp"
+
+namespace ncjoule::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string env(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? value : "";
+}
+
+// A path from a file, relative to that file's folder.
+std::string relative_to(const std::string& file, const std::string& path) {
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  return (fs::path(file).parent_path() / path).lexically_normal().string();
+}
+
+bool is_file(const fs::path& p) {
+  std::error_code ec;
+  return fs::is_regular_file(p, ec);
+}
+
+// The folder ncjoule runs from (/proc/self/exe), empty when it cannot be told.
+fs::path program_folder() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path() : exe.parent_path();
+}
+
+} // namespace
+
+std::string user_config_path() {
+  if (const char* named = std::getenv("NCJOULE_CONFIG")) return named;
+  std::string base = env("XDG_CONFIG_HOME");
+  if (base.empty()) {
+    const std::string home = env("HOME");
+    if (home.empty()) return {};
+    base = home + "/.config";
+  }
+  return base + "/ncjoule/config.toml";
+}
+
+std::optional<UserConfig> parse_user_config(std::string_view text, const std::string& path,
+                                            std::vector<Diagnostic>& diagnostics) {
+  toml::table document;
+  try {
+    document = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& where = e.source().begin;
+    diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                           "not valid TOML: " + std::string(e.description())});
+    return std::nullopt;
+  }
+  UserConfig config;
+  config.path = path;
+  bool failed = false;
+  struct Key {
+    const char* name;
+    std::string UserConfig::*field;
+    bool is_path;
+  };
+  static const Key keys[] = {
+      {"machine", &UserConfig::machine, true},       {"material", &UserConfig::material, false},
+      {"tool_table", &UserConfig::tool_table, true}, {"tool_units", &UserConfig::tool_units, false},
+      {"stock", &UserConfig::stock, false},          {"dialect", &UserConfig::dialect, false}};
+  for (const auto& [name, node] : document) {
+    const auto where = node.source().begin;
+    const Key* key = nullptr;
+    for (const Key& k : keys)
+      if (name.str() == k.name) key = &k;
+    if (!key) {
+      diagnostics.push_back({Severity::Warning, path, int(where.line), int(where.column),
+                             std::string(name.str()) + ": unknown key, ignored (known: machine, "
+                                                       "material, tool_table, tool_units, stock, "
+                                                       "dialect)"});
+      continue;
+    }
+    if (!node.is_string() || node.value<std::string>()->empty()) {
+      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                             std::string(key->name) + ": must be a non-empty string"});
+      failed = true;
+      continue;
+    }
+    std::string value = *node.value<std::string>();
+    if (key->is_path) value = relative_to(path, value);
+    if (key->field == &UserConfig::stock && value.rfind("box:", 0) != 0)
+      value = relative_to(path, value); // an STL file
+    if (key->field == &UserConfig::tool_units && value != "mm" && value != "inch") {
+      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                             "tool_units: must be \"mm\" or \"inch\""});
+      failed = true;
+      continue;
+    }
+    config.*(key->field) = value;
+  }
+  if (failed) return std::nullopt;
+  return config;
+}
+
+const std::optional<UserConfig>& user_config() {
+  static const std::optional<UserConfig> config = []() -> std::optional<UserConfig> {
+    const std::string path = user_config_path();
+    if (path.empty() || !is_file(path)) return UserConfig{};
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    std::vector<Diagnostic> diagnostics;
+    auto parsed = in ? parse_user_config(text.str(), path, diagnostics) : std::nullopt;
+    if (!in) diagnostics.push_back({Severity::Error, path, 0, 0, "cannot read the user config"});
+    print_diagnostics(diagnostics);
+    if (!parsed)
+      std::cerr << "ncjoule: fix " << path << " (or point NCJOULE_CONFIG at another file)\n";
+    return parsed;
+  }();
+  return config;
+}
+
+std::string program_job_file(const std::string& program) {
+  if (program.empty() || program == "-") return {};
+  fs::path job(program);
+  job.replace_extension(".ncjoule.toml");
+  return is_file(job) ? job.string() : std::string();
+}
+
+std::string program_stock_file(const std::string& program) {
+  if (program.empty() || program == "-") return {};
+  fs::path stock(program);
+  stock.replace_extension(".stock");
+  return is_file(stock) ? stock.string() : std::string();
+}
+
+std::vector<std::string> machine_profile_dirs() {
+  std::vector<std::string> dirs;
+  if (const std::string data = env("NCJOULE_DATA_DIR"); !data.empty())
+    dirs.push_back(data + "/machines");
+  const fs::path here = program_folder();
+  if (!here.empty()) dirs.push_back((here.parent_path() / "share/ncjoule/machines").string());
+#ifdef NCJOULE_SOURCE_MACHINES_DIR
+  dirs.push_back(NCJOULE_SOURCE_MACHINES_DIR); // running from the build folder
+#endif
+  return dirs;
+}
+
+std::string default_machine_profile() {
+  for (const std::string& dir : machine_profile_dirs())
+    if (is_file(fs::path(dir) / "generic-3axis.toml")) return dir + "/generic-3axis.toml";
+  return {};
+}
+
+} // namespace ncjoule::cli

@@ -1,0 +1,55 @@
+// Settings a user gives once: the user config file and the files that sit next to a program.
+//
+//   ~/.config/ncjoule/config.toml ($XDG_CONFIG_HOME, or the file $NCJOULE_CONFIG names):
+//       machine = "profiles/mill.toml"   # relative paths are relative to the config's folder
+//       material = "aluminium-alloy"
+//       tool_table = "/home/me/linuxcnc/tool.tbl"
+//       tool_units = "mm"
+//       stock = "box:0,0,-20,100,60,0"   # or an STL file
+//       dialect = "auto"
+//   PROGRAM.ncjoule.toml next to PROGRAM.nc: a job file (stock, material, [[tool]] entries)
+//   PROGRAM.stock next to PROGRAM.nc: one stock, as --stock takes it
+//
+// The command line wins over a program's own files, which win over the user config, which wins
+// over the machine profile.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+
+namespace ncjoule::cli {
+
+struct UserConfig {
+  std::string path; // the file read; empty when there is none
+  std::string machine, material, tool_table, tool_units, stock, dialect;
+};
+
+// Where the user config is looked for (whether or not it exists).
+std::string user_config_path();
+
+// Parses the text of a user config that lives at `path`; errors (file, line, column, key) go to
+// `diagnostics` and give std::nullopt; unknown keys are warnings.
+std::optional<UserConfig> parse_user_config(std::string_view text, const std::string& path,
+                                            std::vector<Diagnostic>& diagnostics);
+
+// The user config, read once; an empty one when there is no file. Prints what is wrong and gives
+// std::nullopt when the file cannot be used.
+const std::optional<UserConfig>& user_config();
+
+// The job file and the stock file that belong to a program ("part.nc" -> "part.ncjoule.toml",
+// "part.stock"), when they exist; empty strings otherwise, and for standard input.
+std::string program_job_file(const std::string& program);
+std::string program_stock_file(const std::string& program);
+
+// The machine profile used when neither the command line nor the user config names one: the
+// generic 3-axis profile installed with ncjoule (share/ncjoule/machines), or the source tree's
+// when ncjoule runs from its build folder. Empty when none is found.
+std::string default_machine_profile();
+
+// Folders where installed machine profiles are looked for, in order.
+std::vector<std::string> machine_profile_dirs();
+
+} // namespace ncjoule::cli

@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""Set once, use everywhere: the user config (NCJOULE_CONFIG / ~/.config/ncjoule/config.toml),
+the job and stock files next to a program (PROGRAM.ncjoule.toml, PROGRAM.stock), the default
+machine profile when none is named, and which source wins. Also `ncjoule doctor` and
+`ncjoule --version`."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+NCJOULE = os.environ["NCJOULE"]
+ROOT = os.environ["NCJOULE_SOURCE_DIR"]
+MACHINES = os.path.join(ROOT, "samples/machines")
+GENERIC = os.path.join(MACHINES, "generic-3axis.toml")
+HAAS = os.path.join(MACHINES, "haas-vf0-pavanaskar2014.toml")
+failures = []
+
+# A side cut with a 12 mm end mill that no comment describes: the tool must come from somewhere.
+PROGRAM = """G21 G90 G17
+T1 M6
+S3000 M3
+G0 X-10 Y10 Z5
+G1 Z-2 F300
+G1 X110
+G0 Z5
+M30
+"""
+
+
+def check(condition, what):
+    print(("ok   " if condition else "FAIL ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def run(*args, config=None, **kw):
+    env = dict(os.environ)
+    env["NCJOULE_CONFIG"] = config or os.path.join(work, "no-config.toml")
+    return subprocess.run([NCJOULE, *args], capture_output=True, text=True, env=env, **kw)
+
+
+def estimate(program, *args, config=None):
+    r = run("estimate", program, "--json", *args, config=config)
+    return r, (json.loads(r.stdout) if r.returncode in (0, 2) and r.stdout.lstrip().startswith("{") else None)
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+work = tempfile.mkdtemp(prefix="ncjoule-config-")
+try:
+    part = write(os.path.join(work, "part.nc"), PROGRAM)
+
+    # No machine named anywhere: the generic profile, with a note saying so.
+    r, doc = estimate(part)
+    check(r.returncode == 0 and doc is not None, f"estimate runs without --machine ({r.stderr[-200:]!r})")
+    if doc:
+        check(doc["machine"]["name"] == "Generic 3-axis VMC", "the generic profile is the default")
+        check("no machine profile given" in r.stderr, "a note says the generic profile is used")
+        check(doc["unsimulated_tools"] == [1], "T1 is described nowhere yet")
+    r_m, doc_m = estimate(part, "--machine", GENERIC)
+    check(doc and doc_m and doc["energy_j"] == doc_m["energy_j"], "same result as --machine generic")
+
+    # The user config: machine (relative to the config's folder), material, stock.
+    os.mkdir(os.path.join(work, "cfg"))
+    shutil.copy(HAAS, os.path.join(work, "cfg", "mill.toml"))
+    config = write(os.path.join(work, "cfg", "config.toml"),
+                   'machine = "mill.toml"\nmaterial = "mild-steel"\nstock = "box:0,0,-10,100,20,0"\n')
+    r, doc = estimate(part, config=config)
+    check(r.returncode == 0 and doc is not None, f"estimate with a user config ({r.stderr[-200:]!r})")
+    if doc:
+        check(doc["machine"]["name"].startswith("Haas VF-0"), "the config's machine is used")
+        check("no machine profile given" not in r.stderr, "no note when the config names one")
+        check("-10.000" in doc["stock"] and "(given)" in doc["stock"], f"the config's stock ({doc['stock']})")
+    r2, doc2 = estimate(part, "--machine", GENERIC, config=config)
+    check(doc2 and doc2["machine"]["name"] == "Generic 3-axis VMC", "--machine wins over the config")
+
+    # A job file next to the program: its tool and stock, over the config's.
+    write(os.path.join(work, "part.ncjoule.toml"),
+          'stock = "box:0,0,-5,100,20,0"\n[[tool]]\nnumber = 1\ntype = "flat"\ndiameter_mm = 12\n')
+    r, doc = estimate(part, config=config)
+    if doc:
+        check(doc["unsimulated_tools"] == [], "PROGRAM.ncjoule.toml describes T1")
+        check("-5.000" in doc["stock"], f"the job file's stock wins over the config's ({doc['stock']})")
+        # The 12 mm cutter at Y10 sweeps Y 4..16 across the whole 100 mm of stock, 2 mm deep.
+        check(abs(doc["removed_mm3"] - 100 * 12 * 2) < 0.03 * 2400,
+              f"the job's tool removes 2400 mm^3 ({doc['removed_mm3']:.0f})")
+    r, doc = estimate(part, "--stock", "box:0,0,-8,100,20,0", config=config)
+    check(doc and "-8.000" in doc["stock"], "--stock wins over the job file")
+
+    # PROGRAM.stock, when the job file gives no stock.
+    write(os.path.join(work, "part.ncjoule.toml"),
+          '[[tool]]\nnumber = 1\ntype = "flat"\ndiameter_mm = 12\n')
+    write(os.path.join(work, "part.stock"), "box:0,0,-3,100,20,0\n")
+    r, doc = estimate(part, config=config)
+    check(doc and "-3.000" in doc["stock"], "PROGRAM.stock wins over the config's stock")
+    r, doc = estimate(part, "--job", write(os.path.join(work, "other.toml"),
+                                           'stock = "box:0,0,-4,100,20,0"\n'), config=config)
+    check(doc and "-4.000" in doc["stock"] and doc["unsimulated_tools"] == [1],
+          "--job replaces the program's job file")
+
+    # compare: each program with its own files.
+    other = write(os.path.join(work, "other-part.nc"), PROGRAM.replace("Z-2", "Z-1"))
+    write(os.path.join(work, "other-part.stock"), "box:0,0,-3,100,20,0\n")
+    r = run("compare", part, other, "--json", config=config)
+    check(r.returncode == 0, f"compare with program files ({r.stderr[-200:]!r})")
+    if r.returncode == 0:
+        by = {os.path.basename(p["file"]): p for p in json.loads(r.stdout)["programs"]}
+        check(by["part.nc"]["removed_mm3"] > 1000 and by["other-part.nc"]["removed_mm3"] == 0,
+              "compare reads each program's own job file (only part.nc has one: its T1 cuts)")
+
+    # A broken config: file, line and column, and nothing runs.
+    bad = write(os.path.join(work, "bad.toml"), 'machine = "mill.toml"\ntool_units = "feet"\n')
+    r = run("estimate", part, config=bad)
+    check(r.returncode == 2 and "bad.toml:2:" in r.stderr and "tool_units" in r.stderr,
+          f"a bad config is refused with its line ({r.stderr[-200:]!r})")
+    unknown = write(os.path.join(work, "unknown.toml"), 'machin = "x.toml"\n')
+    r = run("estimate", part, "--json", config=unknown)
+    check(r.returncode == 0 and "machin: unknown key" in r.stderr, "an unknown key is a warning")
+
+    # doctor and --version.
+    r = run("--version")
+    check(r.returncode == 0 and r.stdout.startswith("ncjoule 0."), f"--version ({r.stdout!r})")
+    r = run("doctor", config=config)
+    check(r.returncode == 0 and "ok    user config" in r.stdout and "Haas" in r.stdout
+          and "ncjoule is ready" in r.stdout, f"doctor with a good config ({r.stdout[-300:]!r})")
+    r = run("doctor", config=bad)
+    check(r.returncode == 2 and "FAIL" in r.stdout, "doctor reports a bad config")
+    broken_machine = write(os.path.join(work, "cfg", "broken.toml"), 'machine = "nope.toml"\n')
+    r = run("doctor", config=broken_machine)
+    check(r.returncode == 2 and "nope.toml does not load" in r.stdout, "doctor reports a missing profile")
+finally:
+    shutil.rmtree(work, ignore_errors=True)
+
+if failures:
+    print(f"{len(failures)} check(s) failed")
+    sys.exit(1)
+print("all checks passed")

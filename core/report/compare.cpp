@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "ncjoule/report.hpp"
@@ -36,7 +37,43 @@ ProgramTotals program_totals(const Estimate& e) {
   t.cost = e.energy.cost;
   t.currency = e.energy.currency;
   t.components_j = e.energy.components_j;
+  t.air_cut_s = e.time.air_cut_s;
+  t.volumes_known = e.removal.has_value() && e.unsimulated_tools.empty();
   return t;
+}
+
+std::vector<std::string> comparison_warnings(const std::vector<RankedProgram>& ranked) {
+  std::vector<std::string> out;
+  std::string unknown;
+  double low = INFINITY, high = 0;
+  for (const RankedProgram& r : ranked) {
+    if (!r.totals.volumes_known) {
+      unknown +=
+          (unknown.empty() ? "" : ", ") + std::filesystem::path(r.totals.file).filename().string();
+      continue;
+    }
+    low = std::min(low, r.totals.removed_mm3);
+    high = std::max(high, r.totals.removed_mm3);
+  }
+  if (!unknown.empty())
+    out.push_back("the volume " + unknown +
+                  " removes is not known (material removal off, or a tool nothing describes): "
+                  "the ranking leaves its cutting energy out");
+  // 1% (and 1 mm^3) apart: grids and tool approximations differ by less on the same part.
+  if (high > 0 && high - low > std::max(1.0, 0.01 * high)) {
+    std::string list;
+    for (const RankedProgram& r : ranked) {
+      if (!r.totals.volumes_known) continue;
+      char text[64];
+      std::snprintf(text, sizeof text, " %.0f mm^3", r.totals.removed_mm3);
+      list += (list.empty() ? "" : ", ") +
+              std::filesystem::path(r.totals.file).filename().string() + text;
+    }
+    out.push_back("the alternatives remove different volumes (" + list +
+                  "): they do not make the same part from the same stock, so their energies "
+                  "are not alternatives of one job");
+  }
+  return out;
 }
 
 std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs) {
@@ -98,6 +135,7 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
     p["time_s"] = t.time_s;
     p["energy_j"] = t.energy_j;
     p["removed_mm3"] = t.removed_mm3;
+    p["air_cut_s"] = t.air_cut_s;
     p["sec_j_mm3"] = t.sec_j_mm3;
     p["co2_kg"] = t.co2_kg;
     p["cost"] = t.cost;
@@ -114,6 +152,7 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
     list.push_back(std::move(p));
   }
   j["programs"] = std::move(list);
+  j["warnings"] = comparison_warnings(ranked);
   return j.dump(indent);
 }
 

@@ -11,6 +11,7 @@
 
 #include "command_registry.hpp"
 #include "multi_estimate.hpp"
+#include "ncjoule/duration.hpp"
 #include "ncjoule/report.hpp"
 
 namespace ncjoule::cli {
@@ -22,19 +23,44 @@ struct CompareOptions {
   bool json = false;
 };
 
-std::string label_of(const std::string& path) {
-  const std::string name = std::filesystem::path(path).filename().string();
-  return name.empty() ? path : name;
+// The names the table shows: file names, or the paths as given when two file names are equal
+// (a/part.nc and b/part.nc). Never shortened.
+std::vector<std::string> labels_of(const std::vector<RankedProgram>& ranked) {
+  std::vector<std::string> names;
+  for (const RankedProgram& r : ranked) {
+    const std::string name = std::filesystem::path(r.totals.file).filename().string();
+    names.push_back(name.empty() ? r.totals.file : name);
+  }
+  for (std::size_t i = 0; i < names.size(); ++i)
+    for (std::size_t k = 0; k < names.size(); ++k)
+      if (i != k && std::filesystem::path(ranked[k].totals.file).filename() ==
+                        std::filesystem::path(ranked[i].totals.file).filename())
+        names[i] = ranked[i].totals.file;
+  return names;
 }
 
-std::string time_text(double s) {
-  char text[32];
-  if (s >= 60)
-    std::snprintf(text, sizeof text, "%ld:%04.1f", static_cast<long>(s) / 60,
-                  s - 60 * std::floor(s / 60));
-  else
-    std::snprintf(text, sizeof text, "%.1f s", s);
-  return text;
+// One format for a whole column: seconds when every time is under a minute, else m:ss.s (h:mm:ss.s
+// from an hour), so times line up and compare at a glance.
+std::vector<std::string> time_column(const std::vector<double>& seconds) {
+  double longest = 0;
+  for (double s : seconds)
+    longest = std::max(longest, s);
+  std::vector<std::string> out;
+  for (double s : seconds) {
+    char text[64];
+    if (longest < 60) {
+      std::snprintf(text, sizeof text, "%.1f s", s);
+    } else {
+      const ClockParts c = split_duration(s, 0.1);
+      if (longest >= 3600)
+        std::snprintf(text, sizeof text, "%s:%02d:%04.1f", huge_hours(c.hours).c_str(), c.minutes,
+                      c.seconds);
+      else
+        std::snprintf(text, sizeof text, "%d:%04.1f", c.minutes, c.seconds);
+    }
+    out.push_back(text);
+  }
+  return out;
 }
 
 std::string diff_text(double diff, double pct, const char* unit, int decimals) {
@@ -44,38 +70,46 @@ std::string diff_text(double diff, double pct, const char* unit, int decimals) {
 }
 
 void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile& machine) {
+  const std::vector<std::string> names = labels_of(ranked);
   std::size_t width = 7;
-  for (const RankedProgram& r : ranked)
-    width = std::max(width, label_of(r.totals.file).size());
-  const std::string currency = ranked.front().totals.currency;
-  std::printf("%zu alternatives on %s, least energy first\n\n", ranked.size(),
-              machine.name.c_str());
-  std::printf(" #  %-*s %10s %10s %9s %9s %9s %10s  %-22s %s\n", static_cast<int>(width), "program",
-              "time", "energy kJ", "kWh", "SEC J/mm3", "CO2 g", ("cost " + currency).c_str(),
-              "energy vs best", "time vs best");
+  for (const std::string& name : names)
+    width = std::max(width, name.size());
+  std::vector<double> times, air;
   for (const RankedProgram& r : ranked) {
+    times.push_back(r.totals.time_s);
+    air.push_back(r.totals.air_cut_s);
+  }
+  const std::vector<std::string> time_cells = time_column(times), air_cells = time_column(air);
+  const std::string currency = ranked.front().totals.currency;
+  std::printf("%zu alternatives on %s, least energy first\n", ranked.size(), machine.name.c_str());
+  for (const std::string& warning : comparison_warnings(ranked))
+    std::printf("warning: %s\n", warning.c_str());
+  std::printf("\n #  %-*s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n", static_cast<int>(width),
+              "program", "time", "air cut", "energy kJ", "kWh", "mm3", "SEC J/mm3", "CO2 g",
+              ("cost " + currency).c_str(), "energy vs best", "time vs best");
+  for (std::size_t i = 0; i < ranked.size(); ++i) {
+    const RankedProgram& r = ranked[i];
     const ProgramTotals& t = r.totals;
     const bool best = r.rank == 1;
-    std::printf("%2d  %-*s %10s %10.2f %9.5f %9.2f %9.2f %10.4f  %-22s %s\n", r.rank,
-                static_cast<int>(width), label_of(t.file).c_str(), time_text(t.time_s).c_str(),
-                t.energy_j / 1000, t.energy_j / 3.6e6, t.sec_j_mm3, t.co2_kg * 1000, t.cost,
-                best ? "best"
-                     : diff_text(r.energy_diff_j / 1000, r.energy_diff_pct, "kJ", 2).c_str(),
-                best ? "-" : diff_text(r.time_diff_s, r.time_diff_pct, "s", 1).c_str());
+    std::printf(
+        "%2d  %-*s %10s %10s %10.2f %9.5f %9.0f %9.2f %9.2f %10.4f  %-22s %s\n", r.rank,
+        static_cast<int>(width), names[i].c_str(), time_cells[i].c_str(), air_cells[i].c_str(),
+        t.energy_j / 1000, t.energy_j / 3.6e6, t.removed_mm3, t.sec_j_mm3, t.co2_kg * 1000, t.cost,
+        best ? "best" : diff_text(r.energy_diff_j / 1000, r.energy_diff_pct, "kJ", 2).c_str(),
+        best ? "-" : diff_text(r.time_diff_s, r.time_diff_pct, "s", 1).c_str());
   }
 
-  // Component by component, each program with its difference to the best.
-  std::printf("\nenergy by component, kJ (difference to the best):\n");
-  std::printf("  %-12s", "component");
-  for (const RankedProgram& r : ranked)
-    std::printf(" %24s", label_of(r.totals.file).substr(0, 24).c_str());
-  std::printf("\n");
+  // Component by component, each program with its difference to the best; columns as wide as
+  // their program's name.
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::string> rows;
   for (std::size_t c = 0; c < kPowerComponentCount; ++c) {
     bool any = false;
     for (const RankedProgram& r : ranked)
       any = any || r.totals.components_j[c] != 0;
     if (!any) continue;
-    std::printf("  %-12s", std::string(component_name(PowerComponent(c))).c_str());
+    rows.push_back(std::string(component_name(PowerComponent(c))));
+    cells.emplace_back();
     for (const RankedProgram& r : ranked) {
       char cell[64];
       if (r.rank == 1)
@@ -83,16 +117,31 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
       else
         std::snprintf(cell, sizeof cell, "%.2f (%+.2f)", r.totals.components_j[c] / 1000,
                       r.component_diff_j[c] / 1000);
-      std::printf(" %24s", cell);
+      cells.back().push_back(cell);
     }
+  }
+  std::vector<std::size_t> widths;
+  for (std::size_t i = 0; i < ranked.size(); ++i) {
+    std::size_t w = names[i].size();
+    for (const auto& row : cells)
+      w = std::max(w, row[i].size());
+    widths.push_back(w);
+  }
+  std::printf("\nenergy by component, kJ (difference to the best):\n  %-12s", "component");
+  for (std::size_t i = 0; i < ranked.size(); ++i)
+    std::printf("  %*s", static_cast<int>(widths[i]), names[i].c_str());
+  std::printf("\n");
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    std::printf("  %-12s", rows[row].c_str());
+    for (std::size_t i = 0; i < ranked.size(); ++i)
+      std::printf("  %*s", static_cast<int>(widths[i]), cells[row][i].c_str());
     std::printf("\n");
   }
   std::printf("\n");
-  for (const RankedProgram& r : ranked)
-    if (r.rank > 1)
-      std::printf("%s uses %.2f kJ more than %s: %s\n", label_of(r.totals.file).c_str(),
-                  r.energy_diff_j / 1000, label_of(ranked.front().totals.file).c_str(),
-                  explain_difference(r).c_str());
+  for (std::size_t i = 1; i < ranked.size(); ++i)
+    std::printf("%s uses %.2f kJ more than %s: %s\n", names[i].c_str(),
+                ranked[i].energy_diff_j / 1000, names[0].c_str(),
+                explain_difference(ranked[i]).c_str());
 }
 
 int run_compare(const CompareOptions& o) {

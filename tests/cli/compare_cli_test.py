@@ -8,8 +8,10 @@ import io
 import json
 import os
 import pty
+import shutil
 import subprocess
 import sys
+import tempfile
 import tomllib
 
 NCJOULE = os.environ["NCJOULE"]
@@ -89,6 +91,35 @@ for p, axis, k, passes, run_mm in [(px, "axis_x", ax, 7, 124), (py, "axis_y", ay
 r = run("compare", X, Y, "--machine", HAAS, "--stock", stock)
 check(r.returncode == 0 and "best" in r.stdout and "kJ more than" in r.stdout and "axis_y" in r.stdout,
       "the text table ranks, compares and names the reason")
+check(doc["warnings"] == [], f"the same part: no warning ({doc['warnings']})")
+for p in progs:
+    check(0 < p["air_cut_s"] < p["time_s"], f"air cutting time per alternative ({p['air_cut_s']:.1f} s)")
+check("air cut" in r.stdout, "the table shows air cutting")
+
+# Alternatives that do not make the same part: said, in the table and in the JSON.
+other = os.path.join(PROGRAMS, "anziani-table2-1.ngc")
+r = run("compare", X, other, "--machine", HAAS, "--json")
+check(r.returncode == 0 and any("different volumes" in w for w in json.loads(r.stdout)["warnings"]),
+      "different volumes: a JSON warning")
+r = run("compare", X, other, "--machine", HAAS)
+check("warning: the alternatives remove different volumes" in r.stdout, "different volumes: in the table")
+
+# Names are never shortened, and equal file names in two folders are told apart; one time
+# format per column.
+with tempfile.TemporaryDirectory() as d:
+    long_name = os.path.join(d, "a-very-long-program-name-for-the-roughing-alternative.ngc")
+    shutil.copy(X, long_name)
+    os.mkdir(os.path.join(d, "v2"))
+    same = os.path.join(d, "v2", os.path.basename(X))
+    shutil.copy(Y, same)
+    r = run("compare", long_name, X, same, "--machine", HAAS, "--stock", stock)
+    check(r.returncode == 0, f"compare three ({r.stderr[-200:]!r})")
+    check(r.stdout.count(os.path.basename(long_name)) >= 3, "a long name is printed whole, in both tables")
+    check(same in r.stdout and X in r.stdout, "equal file names: shown with their paths")
+    rows = [l for l in r.stdout.splitlines() if l[:3].strip().isdigit()]
+    times = [l.split()[2] for l in rows]
+    check(len(rows) == 3 and all(":" in t for t in times), f"one time format in the column: {times}")
+
 r = run("compare", X, "--machine", HAAS)
 check(r.returncode == 1 and "two or more" in r.stderr, "one program: exit 1, says why")
 r = run("compare", X, os.path.join(PROGRAMS, "missing.ngc"), "--machine", HAAS)

@@ -43,6 +43,8 @@ struct ProgramTotals {
   double cost = 0;
   std::string currency;
   ComponentValues components_j{};
+  double air_cut_s = 0;       // feed moves that remove nothing
+  bool volumes_known = false; // removal simulated with every tool described
 };
 ProgramTotals program_totals(const Estimate& estimate);
 
@@ -66,6 +68,10 @@ std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs);
 std::string explain_difference(const RankedProgram& ranked, std::size_t max_components = 3);
 
 // The comparison as JSON (docs/report.md).
+// What makes a ranking doubtful: alternatives that remove different volumes (not the same part,
+// or not the same stock), or whose volumes are not known. Empty when there is nothing to say.
+std::vector<std::string> comparison_warnings(const std::vector<RankedProgram>& ranked);
+
 std::string comparison_json(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
                             int indent = 1);
 

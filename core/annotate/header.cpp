@@ -9,6 +9,8 @@
 namespace ncjoule::annotation {
 namespace {
 
+constexpr double kMm3PerIn3 = 25.4 * 25.4 * 25.4;
+
 struct Group {
   std::string label;
   std::vector<std::string> fields;
@@ -32,7 +34,60 @@ Group totals(const Estimate& estimate) {
   const std::string currency = safe_token(e.currency, 8);
   g.fields.push_back(
       field("COST" + (currency.empty() ? "" : "_" + currency), format_significant(e.cost, 3, 4)));
+  // Mean removal rate while cutting; an inch program also reads in inches.
+  const double cutting_s = estimate.time.cutting_s();
+  const double mrr = cutting_s > 0 ? e.removed_mm3 / cutting_s : 0;
+  g.fields.push_back(field("MRR_MM3_S", format_significant(mrr, 4, 3)));
+  if (estimate.inch) {
+    g.fields.push_back(field("VOL_IN3", format_significant(e.removed_mm3 / kMm3PerIn3, 4, 4)));
+    g.fields.push_back(field("MRR_IN3_MIN", format_significant(mrr * 60 / kMm3PerIn3, 4, 4)));
+  }
   return g;
+}
+
+// Where the time goes: rapids, cutting, air cutting (feed moves that remove nothing), tool
+// changes, dwells and spindle ramps.
+Group time_split(const Estimate& estimate) {
+  const TimeSplit& t = estimate.time;
+  Group g{"TIME", {}};
+  g.fields.push_back(field("RAPID", format_duration(t.rapid_s)));
+  g.fields.push_back(field("CUT", format_duration(t.cutting_s())));
+  g.fields.push_back(field("AIR", estimate.removal ? format_duration(t.air_cut_s) : "unknown"));
+  g.fields.push_back(field("TOOL_CHANGE", format_duration(t.tool_change_s)));
+  g.fields.push_back(field("DWELL", format_duration(t.dwell_s)));
+  g.fields.push_back(field("SPINDLE", format_duration(t.spindle_s)));
+  if (t.other_s > 0) g.fields.push_back(field("OTHER", format_duration(t.other_s)));
+  return g;
+}
+
+// One group per operation, in program order: its name, tool, time, air cutting, energy, volume
+// and share of the energy. The first kMaxOperations; the text summary lists them all.
+constexpr std::size_t kMaxOperations = 40;
+std::vector<Group> operations(const Estimate& estimate) {
+  std::vector<Group> out;
+  const double total = estimate.energy.energy_j;
+  for (std::size_t k = 0; k < estimate.operations.size() && k < kMaxOperations; ++k) {
+    const OperationSummary& op = estimate.operations[k];
+    Group g{"OP", {}};
+    g.fields.push_back(field("N", std::to_string(k + 1)));
+    g.fields.push_back(field("NAME", safe_token(op.name, 32)));
+    g.fields.push_back(field("TOOL", op.tool > 0 ? "T" + std::to_string(op.tool) : "-"));
+    g.fields.push_back(field("T", format_duration(op.time_s)));
+    if (estimate.removal) g.fields.push_back(field("AIR", format_duration(op.time.air_cut_s)));
+    g.fields.push_back(field("E", format_si(op.energy_j, "J")));
+    g.fields.push_back(field("VOL_MM3", format_significant(op.removed_mm3, 4, 3)));
+    if (estimate.inch)
+      g.fields.push_back(field("VOL_IN3", format_significant(op.removed_mm3 / kMm3PerIn3, 4, 4)));
+    // No '%': Fanuc-family controllers read it as the end of the tape, even in a comment.
+    g.fields.push_back(
+        field("SHARE_PCT", format_significant(total > 0 ? 100 * op.energy_j / total : 0, 3, 1)));
+    out.push_back(std::move(g));
+  }
+  if (estimate.operations.size() > kMaxOperations)
+    out.push_back({"OP",
+                   {"and", std::to_string(estimate.operations.size() - kMaxOperations), "more", "-",
+                    "ncjoule", "estimate", "lists", "them", "all"}});
+  return out;
 }
 
 Group components(const Estimate& estimate) {
@@ -186,8 +241,12 @@ std::vector<std::string> header_lines(const Estimate& estimate, const MachinePro
                                       const WriteStyle& style,
                                       const std::function<int(int)>& line_in_output) {
   std::vector<std::string> lines;
-  for (const Group& g : {totals(estimate), components(estimate), machine_used(estimate, machine),
-                         constants(estimate.power), legend()})
+  std::vector<Group> groups{totals(estimate), time_split(estimate), components(estimate)};
+  for (Group& g : operations(estimate))
+    groups.push_back(std::move(g));
+  for (Group g : {machine_used(estimate, machine), constants(estimate.power), legend()})
+    groups.push_back(std::move(g));
+  for (const Group& g : groups)
     wrap(g, style, lines);
   // One line per warning, cut to the line length: a warning is read, not parsed.
   for (std::string text : warning_texts(estimate, line_in_output)) {

@@ -130,6 +130,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   // 2. Tools and stock.
   std::vector<Diagnostic> found;
   scan.tool_comments.dialect = e.dialect;
+  e.inch = scan.tool_comments.inch;
   std::map<int, Tool> described = described_tools(source, scan.tool_comments, options, found);
   add_diagnostics(e, found, source.path);
   std::unique_ptr<RemovalSimulator> removal;

@@ -71,7 +71,8 @@ std::string kpi_cards(const Estimate& e) {
 
 std::string operations_table(const std::vector<OperationSummary>& ops, const Estimate& e) {
   std::string html = "<table><thead><tr><th class=\"name\">Operation</th><th>Tool</th>"
-                     "<th>Line</th><th>Start</th><th>Time</th><th>Removed mm&sup3;</th>"
+                     "<th>Line</th><th>Start</th><th>Time</th><th>Air cut</th>"
+                     "<th>Removed mm&sup3;</th>"
                      "<th>Energy kJ</th><th>Share</th><th>SEC J/mm&sup3;</th></tr></thead><tbody>";
   for (const OperationSummary& op : ops) {
     const double share = e.energy.energy_j > 0 ? 100 * op.energy_j / e.energy.energy_j : 0;
@@ -79,9 +80,9 @@ std::string operations_table(const std::vector<OperationSummary>& ops, const Est
             (op.tool > 0 ? "T" + std::to_string(op.tool) : "&mdash;") + "</td><td>" +
             (op.line >= 0 ? std::to_string(op.line + 1) : "&mdash;") + "</td><td>" +
             report_detail::clock_label(op.start_s) + "</td><td>" + duration_text(op.time_s) +
-            "</td><td>" + format_number(op.removed_mm3, 0) + "</td><td>" +
-            format_number(op.energy_j / 1000, 2) + "</td><td>" + format_number(share, 1) +
-            "%</td><td>" +
+            "</td><td>" + (e.removal ? duration_text(op.time.air_cut_s) : "&mdash;") + "</td><td>" +
+            format_number(op.removed_mm3, 0) + "</td><td>" + format_number(op.energy_j / 1000, 2) +
+            "</td><td>" + format_number(share, 1) + "%</td><td>" +
             (op.removed_mm3 > 0 ? format_number(op.energy_j / op.removed_mm3, 2) : "&mdash;") +
             "</td></tr>";
   }

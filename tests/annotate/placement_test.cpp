@@ -176,3 +176,29 @@ TEST_CASE("a block's numbers are the estimate's, and CUM is the time when it end
   CHECK(field_value(after[2], "T") >= 5.45);
   CHECK(field_value(after[2], "T") <= 6.0);
 }
+
+TEST_CASE("the header splits the time and has one line per operation; inch programs in inches") {
+  const std::string two_ops = "G21 G90\n(Facing)\nT1 M6\nS2000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F200\n"
+                              "G1 X80\nG0 Z5\n(2D Pocket1)\nT2 M6\nS3000 M3\nG0 X20 Y20\n"
+                              "G1 Z-2 F100\nG4 P2\nG0 Z10\nM2\n";
+  const std::string once = annotated(two_ops);
+  for (const char* key :
+       {"(NCJ TIME RAPID=", " CUT=", " AIR=unknown", " TOOL_CHANGE=", " DWELL=2s", " MRR_MM3_S="}) {
+    CAPTURE(key);
+    CHECK(once.find(key) != std::string::npos);
+  }
+  CHECK(once.find("VOL_IN3") == std::string::npos); // a metric program
+  std::vector<std::string> ops;
+  for (const std::string& line : lines_of(once))
+    if (line.rfind("(NCJ OP ", 0) == 0) ops.push_back(line);
+  REQUIRE(ops.size() == 2);
+  CHECK(ops[0].find("N=1 NAME=Facing TOOL=T1 T=") != std::string::npos);
+  CHECK(ops[1].find("N=2 NAME=2D_Pocket1 TOOL=T2 T=") != std::string::npos);
+  CHECK(ops[1].find("SHARE_PCT=") != std::string::npos);
+  CHECK(once.find('%') == std::string::npos); // '%' ends a Fanuc tape, even in a comment
+
+  const std::string inch = annotated("G20 G90\nT1 M6\nS2000 M3\nG0 X0 Y0 Z0.2\nG1 Z-0.04 F8\n"
+                                     "G1 X3\nG0 Z0.2\nM2\n");
+  CHECK(inch.find(" VOL_IN3=") != std::string::npos);
+  CHECK(inch.find(" MRR_IN3_MIN=") != std::string::npos);
+}

@@ -93,6 +93,12 @@ with tempfile.TemporaryDirectory() as tmp:
                   "Energy per program, by component"]:
         check(title in html, f"section '{title}'")
 
+    # The operation table has the air-cutting time of each operation (14.7 s of the X facing's
+    # feed moves cut nothing: its entry, exit and step-over moves).
+    table = html.split("<th class=\"name\">Operation</th>")[1].split("</table>")[0]
+    check("<th>Air cut</th>" in table and "<td>14.7 s</td>" in table,
+          "the operation table shows air cutting per operation")
+
     # Warnings are shown in the page, escaped, not only counted: a program with no F word on its
     # first feed move and no stock.
     warned = os.path.join(tmp, "warned.ngc")

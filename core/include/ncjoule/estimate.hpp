@@ -185,6 +185,7 @@ struct Estimate {
   std::size_t blocks = 0;   // blocks the interpreter executed
   std::size_t commands = 0; // canonical commands they made
   double time_s = 0;        // the program's time
+  bool inch = false;        // the program's units: its first G20/G21 (else those it starts in)
   TimeSplit time;
   std::map<int, Tool> tools;            // by the number moves carry; 0: moves with none selected
   std::vector<int> unsimulated_tools;   // tools moves use that nothing describes (no removal)

@@ -100,25 +100,31 @@ std::string_view header_eol(const CleanLines& lines, std::size_t position) {
 }
 
 std::vector<Field> block_fields(const LineSummary* summary, double end_s,
-                                const OperationSummary* op) {
+                                const OperationSummary* op, const BlockFields& want) {
   std::vector<Field> fields;
   const double time_s = summary ? summary->time_s : 0.0;
   const double energy_j = summary ? summary->energy_j : 0.0;
   const double removed = summary ? summary->removed_mm3 : 0.0;
-  fields.push_back({"T=" + format_duration(time_s), 0});
-  fields.push_back({"E=" + format_si(energy_j, "J"), 1});
-  fields.push_back({"P=" + format_si(time_s > 0 ? energy_j / time_s : 0.0, "W"), 5});
-  fields.push_back({"MRR=" + format_significant(time_s > 0 ? removed / time_s : 0.0, 3, 3), 6});
-  fields.push_back({"CUM=" + format_duration(end_s), 7});
+  const double power_w = time_s > 0 ? energy_j / time_s : 0.0;
+  const double mrr = time_s > 0 ? removed / time_s : 0.0;
+  auto wanted = [&](bool field, double value) { return field && !(want.omit_zero && value == 0); };
+  // The block's time is written even when it is 0: a block with no field is a block with no
+  // comment, and the time is what says it was estimated.
+  if (want.time) fields.push_back({"T=" + format_duration(time_s), 0});
+  if (wanted(want.energy, energy_j)) fields.push_back({"E=" + format_si(energy_j, "J"), 1});
+  if (wanted(want.power, power_w)) fields.push_back({"P=" + format_si(power_w, "W"), 5});
+  if (wanted(want.mrr, mrr)) fields.push_back({"MRR=" + format_significant(mrr, 3, 3), 6});
+  if (want.cumulative) fields.push_back({"CUM=" + format_duration(end_s), 7});
   // A cut asking the spindle for more than its rating: said on the block, never dropped.
   if (summary && summary->spindle_load > 1)
-    fields.push_back({"LOAD=" + format_significant(100.0 * summary->spindle_load, 3, 0) + "%", 0});
-  if (op) {
+    fields.push_back({"LOAD_PCT=" + format_significant(100.0 * summary->spindle_load, 3, 0), 0});
+  if (op && want.operation) {
     const std::string name = safe_token(op->name, kOperationNameLength);
     fields.push_back({"OP=" + (name.empty() ? "T" + std::to_string(op->tool) : name), 2});
     fields.push_back({"OPT=" + format_duration(op->time_s), 3});
     fields.push_back({"OPE=" + format_si(op->energy_j, "J"), 4});
   }
+  if (fields.empty()) fields.push_back({"T=" + format_duration(time_s), 0});
   return fields;
 }
 
@@ -206,8 +212,9 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
         timed || op_start ? insertion_point(text, style.comment) : std::nullopt;
     std::string comment;
     if (at && text.size() < style.max_line_length)
-      comment = block_comment(block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr),
-                              style.max_line_length - text.size(), style);
+      comment = block_comment(
+          block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr, options.fields),
+          style.max_line_length - text.size(), style);
     if (comment.empty()) {
       out += text;
     } else {

@@ -28,6 +28,8 @@ struct AnnotateCliOptions {
   std::string output; // empty: standard output, unless in_place
   bool in_place = false;
   bool no_header = false;
+  std::string fields; // --fields T,E,...; empty: all (or the compact set)
+  bool compact = false;
   EstimateSettings settings;
 };
 
@@ -50,6 +52,17 @@ int run_annotate(const AnnotateCliOptions& o) {
   with_progress.progress = progress.callback();
   AnnotateOptions annotate_options;
   annotate_options.header = !o.no_header;
+  if (o.compact) annotate_options.fields = compact_block_fields();
+  if (!o.fields.empty()) {
+    std::string error;
+    const auto fields = parse_block_fields(o.fields, &error);
+    if (!fields) {
+      std::cerr << "ncjoule: bad --fields: " << error << '\n';
+      return kUsage;
+    }
+    annotate_options.fields = *fields;
+    annotate_options.fields.omit_zero = o.compact;
+  }
   const AnnotatedProgram result =
       annotate_program(input->path, input->text, machine, with_progress, annotate_options);
   progress.finish();
@@ -82,6 +95,12 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_flag("-i,--in-place", options->in_place, "Replace the input file")->excludes(output);
   add_estimate_settings(*cmd, options->settings);
   cmd->add_flag("--no-header", options->no_header, "Leave out the summary header");
+  cmd->add_option("--fields", options->fields,
+                  "Fields of each block's comment, from T,E,P,MRR,CUM,OP (default: all; "
+                  "docs/annotation.md)");
+  cmd->add_flag("--compact", options->compact,
+                "Smaller annotations: T, E, MRR and OP, zero values left out (about 60% of the "
+                "bytes the default adds)");
   cmd->footer("Exit codes: 0 written; 1 bad command line; 2 bad input: unreadable, or a program "
               "with errors its controller would refuse (written all the same when it could be "
               "estimated, its header listing them); 3 the output could not be written (the "

@@ -410,7 +410,42 @@ def full_disk():
             subprocess.run(["umount", small])
 
 
+def overload_and_fields():
+    # A cut over the spindle's rating: its LOAD field is in the comment (no '%', which ends a
+    # Fanuc tape and is not a character a marked comment may hold) and strip still takes it out.
+    program = ("(T1 D=40. CR=0. - ZMIN=-10. - FLAT END MILL)\nG21 G90\nT1 M6\nS800 M3\n"
+               "G0 X-30 Y20 Z5\nG1 Z-10 F2000\nG1 X130\nG0 Z5\nM30\n").encode()
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "over.ngc")
+        with open(path, "wb") as f:
+            f.write(program)
+        with open(os.path.join(d, "over.stock"), "w") as f:
+            f.write("box:0,0,-20,100,40,0\n")
+        r = run("annotate", path, "--machine", GENERIC)
+        check(r.returncode == 0 and b"LOAD_PCT=" in r.stdout and b"%" not in r.stdout,
+              "an overloaded cut says LOAD_PCT, without '%'")
+        s = run("strip", "-", "-o", "-", stdin=r.stdout)
+        check(s.stdout == program, "strip takes the LOAD field out with its comment")
+
+        # --fields and --compact: fewer bytes, the same round trip.
+        full = len(run("annotate", SAMPLE, "--machine", GENERIC).stdout)
+        for args, expect, absent in ((["--fields", "T"], b" T=", [b" E=", b" MRR=", b" CUM="]),
+                                     (["--compact"], b" MRR=", [b"MRR=0 ", b" P=", b" CUM="])):
+            a = run("annotate", SAMPLE, "--machine", GENERIC, *args)
+            body = b"\n".join(l for l in a.stdout.split(b"\n") if b"(NCJ " in l and b"NCJ KEYS" not in l
+                              and not l.startswith(b"(NCJ "))
+            check(a.returncode == 0 and expect in body and not any(x in body for x in absent),
+                  "%s: only the fields asked for" % " ".join(args))
+            check(len(a.stdout) < full, "%s: smaller than the default (%d < %d bytes)" % (
+                " ".join(args), len(a.stdout), full))
+            st = run("strip", "-", "-o", "-", stdin=a.stdout)
+            check(st.stdout == read(SAMPLE), "%s: strip gives the original" % " ".join(args))
+        bad = run("annotate", SAMPLE, "--machine", GENERIC, "--fields", "T,WATTS")
+        check(bad.returncode == 1 and "WATTS" in bad.stderr.decode(), "--fields with an unknown name")
+
+
 round_trips()
+overload_and_fields()
 msg_comments()
 streams_and_in_place()
 input_failures()

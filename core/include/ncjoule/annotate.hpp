@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -23,10 +24,25 @@ namespace ncjoule {
 // LinuxCNC's rs274 refuses a line of 253 bytes with its line ending ("Command too long").
 inline constexpr std::size_t kDefaultMaxLineLength = 250;
 
+// Which fields a block's comment holds: T (block time), E (energy), P (mean power), MRR (mean
+// removal rate), CUM (time at the block's end), OP (the operation's name, time and energy on the
+// line that starts it). LOAD (a cut over the spindle's rating) is always written.
+struct BlockFields {
+  bool time = true, energy = true, power = true, mrr = true, cumulative = true, operation = true;
+  bool omit_zero = false; // leave out a field whose value is 0 (MRR=0 on rapids, E=0)
+};
+// The compact style: T, E, MRR and OP, zeros left out: about 60% of the bytes the default adds
+// (docs/annotation.md gives the sizes).
+BlockFields compact_block_fields();
+// "T,E,MRR" (any case, any order) -> those fields; std::nullopt, with `error` set, for a name
+// that is not one of T, E, P, MRR, CUM, OP or an empty list.
+std::optional<BlockFields> parse_block_fields(std::string_view list, std::string* error);
+
 struct AnnotateOptions {
   bool header = true;              // the summary header after the % and O-number lines
   bool operations = true;          // per-operation subtotals on tool-change lines
   std::size_t max_line_length = 0; // 0: the dialect's, else kDefaultMaxLineLength
+  BlockFields fields;              // what each block's comment says
 };
 
 // The program in `source` with its predictions as comments. `estimate` must come from

@@ -4,7 +4,9 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 #include <sstream>
+#include <tuple>
 
 namespace ncjoule::cli {
 
@@ -35,8 +37,34 @@ std::optional<SourceFile> read_source(const std::string& path) {
 }
 
 void print_diagnostics(const std::vector<Diagnostic>& diagnostics, std::size_t dropped) {
-  for (const Diagnostic& d : diagnostics)
-    std::cerr << format_diagnostic(d) << '\n';
+  // The same message on many lines (a tool controller with no feed rate: every feed move) is
+  // one message: its first place, then how many more and the next few lines.
+  constexpr std::size_t kLinesNamed = 5;
+  struct Repeat {
+    std::size_t count = 0;
+    std::vector<int> lines;
+  };
+  std::map<std::tuple<Severity, std::string, std::string>, Repeat> repeats;
+  std::vector<const Diagnostic*> firsts;
+  for (const Diagnostic& d : diagnostics) {
+    Repeat& r = repeats[{d.severity, d.file, d.message}];
+    if (r.count++ == 0)
+      firsts.push_back(&d);
+    else if (r.lines.size() < kLinesNamed && d.line > 0)
+      r.lines.push_back(d.line);
+  }
+  for (const Diagnostic* d : firsts) {
+    std::cerr << format_diagnostic(*d);
+    const Repeat& r = repeats[{d->severity, d->file, d->message}];
+    if (r.count > 1) {
+      std::cerr << " (" << r.count - 1 << " more time" << (r.count > 2 ? "s" : "");
+      for (std::size_t k = 0; k < r.lines.size(); ++k)
+        std::cerr << (k == 0 ? ": line " : ", ") << r.lines[k];
+      if (r.lines.size() + 1 < r.count && !r.lines.empty()) std::cerr << ", ...";
+      std::cerr << ')';
+    }
+    std::cerr << '\n';
+  }
   if (dropped > 0)
     std::cerr << "ncjoule: " << dropped << " more diagnostics not shown (too many)\n";
 }

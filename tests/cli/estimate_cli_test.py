@@ -100,5 +100,14 @@ percents = [int(l.split()[1]) for l in r.stderr.splitlines() if l.startswith("PR
 check(r.returncode == 0 and len(percents) >= 3 and percents == sorted(percents)
       and percents[-1] == 100 and percents[0] == 0, f"progress lines in order to 100 ({percents})")
 
+# The same problem on every feed move (a FreeCAD tool controller with no feed rate) is one
+# message with its count and the next lines, not one line per block.
+zero_feed = "G21 G90\nT1 M6\nS1000 M3\nG0 X0 Y0 Z1\n" + "".join(
+    f"G1 X{k} Y{k % 3}\n" for k in range(1, 61)) + "M2\n"
+r = run("estimate", "-", "--machine", ZHOU, "--no-removal", stdin=zero_feed)
+lines = [l for l in r.stderr.splitlines() if "no feed rate" in l]
+check(r.returncode == 2 and len(lines) == 1 and "(59 more times: line 6, 7, 8, 9, 10, ...)" in lines[0],
+      f"a repeated error is printed once with its count ({lines[:2]})")
+
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

@@ -104,6 +104,11 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
       "</h2><div class=\"path\">" + html_escaped(e.file) + " &middot; " +
       html_escaped(e.removal ? e.removal->stock_description : "stock not simulated") + "</div>";
   html += kpi_cards(e);
+  html += report_detail::svg_operation_timeline(id + "-timeline", ops, e.time_s);
+  html += report_detail::svg_toolpath(id + "-xy", "Toolpath from above (XY), feed moves by power",
+                                      e.path, report_detail::PathView::XY);
+  html += report_detail::svg_toolpath(id + "-xz", "Toolpath from the front (XZ)", e.path,
+                                      report_detail::PathView::XZ);
   const std::string color = report_detail::program_color(index);
   html += report_detail::svg_time_chart(
       id + "-power", "Power over time", "W",

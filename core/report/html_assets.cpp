@@ -38,6 +38,17 @@ svg .axis-title{font-size:12px;fill:#64748b}
 svg .axis-title.end{text-anchor:end}
 svg .frame{fill:none;stroke:#cbd5e1;stroke-width:1}
 svg path.line{fill:none;stroke-width:1.4;stroke-linejoin:round}
+svg.toolpath-view path.feed{fill:none;stroke-width:1.6;stroke-linecap:round}
+svg.toolpath-view path.rapid{fill:none;stroke:#94a3b8;stroke-width:.7;stroke-dasharray:4 3}
+svg.toolpath-view path:hover{stroke-width:4}
+.legend.scale{gap:0;align-items:center}
+.legend.scale i{width:22px;margin:0;border-radius:0}
+.legend.scale span{margin:0 8px}
+svg.timeline-view rect.op{stroke:#fff;stroke-width:1}
+svg.timeline-view rect.op:hover{opacity:.8}
+svg.timeline-view text.op-label{font-size:12px;fill:#fff}
+svg.timeline-view text.time{font-size:11px;fill:#64748b}
+svg.timeline-view text.time.end{text-anchor:end}
 svg path.area{fill-opacity:.14;stroke:none}
 svg .markers line{stroke:#94a3b8;stroke-dasharray:4 3;stroke-width:1}
 svg .markers text{font-size:11px;fill:#334155}

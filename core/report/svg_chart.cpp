@@ -21,9 +21,8 @@ std::string fixed(double value, int decimals) {
   return text;
 }
 
-// A coordinate for an SVG attribute: one decimal is finer than a pixel at any likely width.
 std::string coord(double v) {
-  return fixed(v, 1);
+  return svg_coord(v);
 }
 
 // "Nice" tick spacing: 1, 2 or 5 times a power of ten, giving about `count` ticks over `range`.
@@ -68,6 +67,10 @@ std::string json_string(const std::string& s) {
 }
 
 } // namespace
+
+std::string svg_coord(double v) {
+  return fixed(v, 1);
+}
 
 std::string html_escaped(const std::string& text) {
   std::string out;

@@ -48,6 +48,21 @@ struct BarRow {
 std::string svg_bar_chart(const std::string& id, const std::string& title, const std::string& unit,
                           const std::vector<BarRow>& rows, double scale, bool legend);
 
+// A coordinate for an SVG attribute, with one decimal (finer than a pixel at any likely width).
+std::string svg_coord(double v);
+
+// The toolpath seen from above (XY) or from the front (XZ): feed moves coloured by their power,
+// rapids as thin dashed lines, a colour scale under it. Every segment carries a tooltip with its
+// source line, power and removal rate (hover, or tap on a touch screen).
+enum class PathView { XY, XZ };
+std::string svg_toolpath(const std::string& id, const std::string& title,
+                         const std::vector<PathPoint>& path, PathView view);
+
+// The operations as a timeline: one bar per operation from its start, as long as its time, with
+// a tooltip of its name, tool, time and energy.
+std::string svg_operation_timeline(const std::string& id,
+                                   const std::vector<OperationSummary>& operations, double total_s);
+
 // Colour of an energy component, fixed so that every chart and table agrees.
 std::string component_color(PowerComponent component);
 // Colour of the i-th program in a comparison.

@@ -143,6 +143,25 @@ with tempfile.TemporaryDirectory() as tmp:
     bars = re.findall(r'<rect class="bar"', dom)
     check(len(bars) >= 10, f"bar charts have bars ({len(bars)})")
     check("pavanaskar-facing-x.ngc" in dom and "best" in dom, "the comparison names the best")
+    # The toolpath, from above and from the front, for each program: feed moves coloured by
+    # power, each with a tooltip naming its source line; rapids dashed.
+    views = re.findall(r'<svg class="toolpath-view"', dom)
+    check(len(views) == 4, f"XY and XZ views for both programs ({len(views)})")
+    feeds = re.findall(r'<path class="feed" data-line="(\d+)" stroke="(#[0-9a-f]{6})"[^>]*>'
+                       r'<title>line (\d+): feed, ([^<]*)</title>', dom)
+    x_lines = 0
+    for program in (x, y):
+        with open(program) as f:
+            x_lines = max(x_lines, len(f.read().splitlines()))
+    check(len(feeds) > 100 and all(a == b for a, _, b, _ in feeds),
+          f"feed segments with their line in a tooltip ({len(feeds)})")
+    check(all(1 <= int(a) <= x_lines for a, _, _, _ in feeds), "tooltip lines are lines of the program")
+    check(len({c for _, c, _, _ in feeds}) >= 2 and all("W" in t for _, _, _, t in feeds),
+          "feed moves in more than one colour of the power scale, with their power")
+    check(len(re.findall(r'<path class="rapid"', dom)) > 0, "rapids drawn")
+    ops = re.findall(r'<rect class="op"[^>]*><title>([^<]*)</title>', dom)
+    check(len(ops) == 2 and all("FACE1" in t and "kJ" in t for t in ops),
+          f"the operation timeline: one bar per operation with its numbers ({ops})")
 
     shot = os.path.join(tmp, "report.png")
     with tempfile.TemporaryDirectory() as profile:
@@ -159,6 +178,17 @@ with tempfile.TemporaryDirectory() as tmp:
             for i in range(0, len(row), bpp * 10):
                 colours.add(row[i:i + 3])
         check(len(colours) > 50, f"the screenshot is not blank ({len(colours)} colours sampled)")
+        # The toolpath view is drawn: pixels of the power scale's colours near the top of the
+        # page (the legend and the feed moves).
+        scale = {(0x25, 0x34, 0x94), (0x2c, 0x7f, 0xb8), (0x41, 0xb6, 0xc4), (0x7f, 0xcd, 0xbb),
+                 (0xfe, 0xcc, 0x5c), (0xfd, 0x8d, 0x3c), (0xe3, 0x1a, 0x1c)}
+        seen = set()
+        for row in rows[:1800]:
+            for i in range(0, len(row), bpp):
+                px = tuple(row[i:i + 3])
+                if px in scale:
+                    seen.add(px)
+        check(len(seen) >= 3, f"the toolpath and its power scale are drawn ({len(seen)} scale colours seen)")
         # The header band is dark and the page below it light: the style sheet applied.
         check(sum(rows[20][:3]) < 200 and sum(rows[1000][3 * 5:3 * 5 + 3]) > 600,
               "dark header band over a light page")

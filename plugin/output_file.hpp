@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -55,6 +56,52 @@ inline std::string write_in_place(const std::string& target, std::string_view te
   return {};
 }
 
+// The temporary file being written, removed by SIGINT, SIGTERM or SIGHUP before the signal ends
+// the program as it would have: an interrupted write leaves neither a changed target nor a stray
+// file. A plain buffer, because a signal handler may only call async-signal-safe functions.
+inline char pending_temp[4096] = {};
+
+inline void remove_pending_temp(int signal_number) {
+  if (pending_temp[0] != '\0') ::unlink(pending_temp);
+  ::signal(signal_number, SIG_DFL);
+  ::raise(signal_number);
+}
+
+// For the life of a temporary file: the handler above on the signals that end a program (unless
+// they are ignored), and SIGXFSZ ignored, so that a file size limit (ulimit -f) makes the write
+// fail with EFBIG and be reported like a full disk instead of killing the program mid-write.
+class PendingTemp {
+public:
+  explicit PendingTemp(const std::string& path) {
+    if (path.size() < sizeof pending_temp) std::memcpy(pending_temp, path.c_str(), path.size() + 1);
+    struct sigaction cleanup {};
+    cleanup.sa_handler = remove_pending_temp;
+    sigemptyset(&cleanup.sa_mask);
+    for (std::size_t k = 0; k < kCount; ++k) {
+      ::sigaction(kSignals[k], nullptr, &previous_[k]);
+      if (previous_[k].sa_handler != SIG_IGN) ::sigaction(kSignals[k], &cleanup, nullptr);
+    }
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    ::sigaction(SIGXFSZ, &ignore, &previous_file_size_);
+  }
+  ~PendingTemp() {
+    for (std::size_t k = 0; k < kCount; ++k)
+      ::sigaction(kSignals[k], &previous_[k], nullptr);
+    ::sigaction(SIGXFSZ, &previous_file_size_, nullptr);
+    pending_temp[0] = '\0';
+  }
+  PendingTemp(const PendingTemp&) = delete;
+  PendingTemp& operator=(const PendingTemp&) = delete;
+
+private:
+  static constexpr std::size_t kCount = 3;
+  static constexpr int kSignals[kCount] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction previous_[kCount] {};
+  struct sigaction previous_file_size_ {};
+};
+
 } // namespace output_file_detail
 
 // Writes `text` to `target` ("-": standard output). Returns an empty string on success, else
@@ -78,6 +125,10 @@ inline std::string write_output_file(const std::string& target, std::string_view
   const bool exists = ::stat(path.c_str(), &info) == 0;
   if (exists && S_ISDIR(info.st_mode)) return "cannot write " + target + ": it is a directory";
   if (exists && !S_ISREG(info.st_mode)) return write_in_place(path, text);
+  // Replacing a file with other names would leave them with the old text: said, not done.
+  if (exists && info.st_nlink > 1)
+    return "cannot replace " + target + ": it has " + std::to_string(info.st_nlink) +
+           " hard links, which would keep the old text (write to another file with -o)";
 
   const std::string directory = directory_of(path);
   std::string base =
@@ -86,6 +137,7 @@ inline std::string write_output_file(const std::string& target, std::string_view
   const int fd = ::mkstemp(temp.data());
   if (fd < 0)
     return "cannot write " + target + ": cannot create a file in " + directory + ": " + reason();
+  const PendingTemp pending(temp);
   std::string error;
   // The new file gets the old one's permissions, or the usual ones for a new file (mkstemp
   // makes it private).
@@ -101,6 +153,12 @@ inline std::string write_output_file(const std::string& target, std::string_view
     error = "cannot write " + target + ": " + reason();
   else if (::fchmod(fd, mode) != 0)
     error = "cannot set the permissions of " + temp + ": " + reason();
+  // The replacement keeps the old file's owner and group; when it cannot (another user's file
+  // in a folder we may write), the file is left alone rather than given to us.
+  else if (exists && (info.st_uid != ::geteuid() || info.st_gid != ::getegid()) &&
+           ::fchown(fd, info.st_uid, info.st_gid) != 0)
+    error = "cannot keep the owner and group of " + target + " (" + reason() +
+            "): write to another file with -o";
   else if (::fsync(fd) != 0)
     error = "cannot write " + target + ": " + reason();
   if (::close(fd) != 0 && error.empty()) error = "cannot write " + target + ": " + reason();

@@ -444,7 +444,42 @@ def overload_and_fields():
         check(bad.returncode == 1 and "WATTS" in bad.stderr.decode(), "--fields with an unknown name")
 
 
+def in_place_safety():
+    with tempfile.TemporaryDirectory() as d:
+        original = read(SAMPLE)
+        # A file with two names: replacing one would leave the other with the old text.
+        path = os.path.join(d, "part.ngc")
+        shutil.copy(SAMPLE, path)
+        os.link(path, os.path.join(d, "other-name.ngc"))
+        r = run("annotate", path, "--machine", GENERIC, "--in-place")
+        check(r.returncode == 3 and b"hard links" in r.stderr and read(path) == original,
+              "a hard-linked file is refused, untouched")
+        os.remove(os.path.join(d, "other-name.ngc"))
+
+        # Owner and group are kept (only root can give a file to another user).
+        if os.geteuid() == 0:
+            os.chown(path, 4321, 4321)
+            r = run("annotate", path, "--machine", GENERIC, "--in-place")
+            st = os.stat(path)
+            check(r.returncode == 0 and (st.st_uid, st.st_gid) == (4321, 4321),
+                  "--in-place keeps the owner and group (%d:%d)" % (st.st_uid, st.st_gid))
+            shutil.copy(SAMPLE, path)
+
+        # A file size limit hit while writing, with SIGXFSZ at its default (which would kill the
+        # program mid-write): reported as a failed write, the original intact, no temporary left.
+        big = os.path.join(d, "big.ngc")
+        with open(big, "wb") as f:
+            f.write(original * 60)
+        before = read(big)
+        r = subprocess.run(["bash", "-c", "ulimit -f 16; exec \"$0\" annotate \"$1\" --machine \"$2\" "
+                            "--in-place --no-removal", NCJOULE, big, GENERIC], capture_output=True)
+        check(r.returncode == 3 and read(big) == before and not temp_files(d),
+              "a write cut short by a file size limit leaves the file and no temporary (%d, %r)"
+              % (r.returncode, temp_files(d)))
+
+
 round_trips()
+in_place_safety()
 overload_and_fields()
 msg_comments()
 streams_and_in_place()

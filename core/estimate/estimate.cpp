@@ -104,6 +104,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.file = source.path;
   if (options.progress) options.progress(0);
   InterpreterOptions interpreter;
+  static_cast<InterpreterLimits&>(interpreter) = options.limits;
   interpreter.dialect = options.dialect;
   if (!interpreter.dialect && !options.detect_dialect)
     interpreter.dialect = find_dialect(machine.dialect); // "auto" finds none: detected

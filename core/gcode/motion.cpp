@@ -200,6 +200,11 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
       error(v.column['p' - 'a'], "P (number of turns) of an arc must be a positive integer");
       return;
     }
+    if (options_.max_arc_turns && p > double(options_.max_arc_turns)) {
+      error(v.column['p' - 'a'],
+            "P (number of turns) of an arc is more than " + std::to_string(options_.max_arc_turns));
+      return;
+    }
     turns = int(std::lround(p));
   }
   double cf, cs;

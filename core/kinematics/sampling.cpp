@@ -6,8 +6,10 @@
 namespace ncjoule::kinematics_detail {
 namespace {
 
-// Guards against a step so small that one move would fill memory.
-constexpr double kMaxSamplesPerMove = 1e7;
+// Guards against a step so small, or a move so long (X1e100), that one move would fill memory:
+// 100,000 samples (6 MB) cover a 5 m move at a 0.05 mm grid; beyond that the samples thin out,
+// which removal's swept steps between samples tolerate on the long straight moves it happens on.
+constexpr double kMaxSamplesPerMove = 1e5;
 
 std::size_t intervals(double extent, double step) {
   if (!(step > 0) || !(extent > 0)) return 1;
@@ -32,12 +34,14 @@ void sample_move(const CanonCommand& move, const TimedSpan& profile, double spat
     out.push_back(MotionSample{start_s + t, u, point_on_move(move, u), profile.speed_at(t)});
   };
   double previous_t = 0;
+  // The extra samples in time share the same budget as those in space.
+  const std::size_t extra_cap = std::max<std::size_t>(1, std::size_t(kMaxSamplesPerMove) / n);
   for (std::size_t k = 1; k <= n; ++k) {
     const bool last = k == n;
     const double s = last ? length : length * static_cast<double>(k) / static_cast<double>(n);
     const double t = last ? duration : profile.time_at(s);
     // Slow stretches (ramps from rest) get extra samples so no gap exceeds max_sample_dt_s.
-    const std::size_t m = intervals(t - previous_t, options.max_sample_dt_s);
+    const std::size_t m = std::min(intervals(t - previous_t, options.max_sample_dt_s), extra_cap);
     for (std::size_t j = 1; j < m; ++j) {
       const double tj = previous_t + (t - previous_t) * static_cast<double>(j) / m;
       push(profile.distance_at(tj), tj);
@@ -55,7 +59,7 @@ void sample_dog_leg(const CanonCommand& move, const DogLegMove& dog_leg, double 
   const double duration = dog_leg.duration();
   // Uniform in time: at most peak * dt apart in space.
   std::size_t n = intervals(dog_leg.peak_speed() * duration, options.max_sample_step_mm);
-  n = std::max(n, intervals(duration, options.max_sample_dt_s));
+  n = std::max(n, intervals(duration, options.max_sample_dt_s)); // each capped already
   out.reserve(out.size() + n + 1);
   out.push_back(MotionSample{start_s, 0.0, move.start, 0.0});
   for (std::size_t k = 1; k < n; ++k) {

@@ -12,8 +12,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const char* name : {"linuxcnc", "fanuc"}) {
     ncjoule::InterpreterOptions options;
     options.dialect = ncjoule::find_dialect(name);
-    options.max_commands = 100000;
-    options.max_loop_iterations = 10000;
+    // Small limits: thousands of runs a second, and the limits themselves are exercised.
+    options.max_commands = 2000;
+    options.max_loop_iterations = 200;
+    options.max_cycle_repeats = 50;
+    options.max_arc_turns = 20;
     std::size_t printed = 0;
     ncjoule::interpret(source, options, [&printed](const ncjoule::CanonCommand& command) {
       printed += ncjoule::format_canon(command).size();

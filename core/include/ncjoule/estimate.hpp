@@ -48,6 +48,8 @@ struct EstimateOptions {
   // Keep the operating trace of the whole program in Estimate::trace (calibration needs it;
   // memory grows with the program).
   bool keep_trace = false;
+  // Bounds on what the program may make the interpreter do (gcode.hpp).
+  InterpreterLimits limits;
 };
 
 // A job file (TOML) says what a program is cut from and with:

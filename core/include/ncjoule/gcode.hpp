@@ -271,16 +271,23 @@ ToolTable parse_tool_table(const SourceFile& file, bool inch, std::vector<Diagno
 // The interpreter
 // ---------------------------------------------------------------------------------------------
 
-struct InterpreterOptions {
+// Bounds on what one program may make the interpreter do, each an error when passed (0: no
+// limit). The defaults stop runaway programs; services and fuzzers that run programs from
+// strangers set them lower.
+struct InterpreterLimits {
+  std::size_t max_commands = 0;                // canonical commands (guards runaway loops)
+  std::size_t max_loop_iterations = 1'000'000; // backward jumps of loops
+  std::size_t max_cycle_repeats = 100'000;     // L of one canned cycle block
+  std::size_t max_arc_turns = 1'000'000;       // P of one arc (full turns of a helix)
+};
+
+struct InterpreterOptions : InterpreterLimits {
   std::optional<Dialect> dialect; // empty: detect from the text
   // Detection found nothing: this dialect (the machine's control) rather than linuxcnc.
   std::optional<Dialect> fallback_dialect;
   ToolTable tools;
-  bool block_delete = false;                   // honour '/' (skip those blocks)
-  bool optional_stop = true;                   // M1 stops (only recorded; time counts zero)
-  std::size_t max_commands = 0;                // 0: no limit (guards runaway loops)
-  std::size_t max_loop_iterations = 1'000'000; // backward jumps of loops (0: no limit)
-  std::size_t max_cycle_repeats = 100'000;     // L of one canned cycle block (0: no limit)
+  bool block_delete = false; // honour '/' (skip those blocks)
+  bool optional_stop = true; // M1 stops (only recorded; time counts zero)
 };
 
 struct InterpretResult {

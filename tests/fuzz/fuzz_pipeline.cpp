@@ -28,8 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   ncjoule::EstimateOptions options;
   options.stock = ncjoule::parse_stock_spec("box:0,0,-5,20,20,0", nullptr);
-  options.removal.grid_mm = 0.5;
-  options.limits.max_commands = 2000;
+  options.removal.grid_mm = 2; // coarse: each sample is cheap, the code paths the same
+  options.limits.max_commands = 500;
   options.limits.max_loop_iterations = 200;
   options.limits.max_cycle_repeats = 50;
   options.limits.max_arc_turns = 20;

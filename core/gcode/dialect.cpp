@@ -48,6 +48,7 @@ std::vector<Dialect> make_dialects() {
   mach3.fanuc_subprograms = true; // Mach3/Mach4 support M98/M99 and o-numbers
   mach3.canned_cycle_group = true;
   mach3.last_code_of_group_wins = true;
+  mach3.zero_radius_circle_is_no_motion = true;
   all.push_back(mach3);
 
   Dialect siemens;

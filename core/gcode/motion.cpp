@@ -255,6 +255,13 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
     }
     const double min_radius = arc_tolerances(state_.inch).radius;
     if (std::hypot(sf - cf, ss - cs) < min_radius || std::hypot(ef - cf, es - cs) < min_radius) {
+      const bool point =
+          std::hypot(end.x - pos_.x, end.y - pos_.y, end.z - pos_.z) < min_radius;
+      if (point && dialect_.zero_radius_circle_is_no_motion) {
+        warning(col, "arc of zero radius: no motion (" + dialect_.name +
+                         " passes over it; LinuxCNC would refuse it)");
+        return;
+      }
       error(col, "arc of zero radius");
       return;
     }

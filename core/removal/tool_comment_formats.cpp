@@ -199,13 +199,22 @@ std::optional<DescribedTool> read_freecad_tool(const std::string& upper, Descrip
 }
 
 std::optional<DescribedTool> read_free_tool(const std::string& upper, DescriptionUnits units) {
-  static const std::regex prefix(R"(^\s*(?:CHANGE\s+TOOL|TOOL\s*CHANGE|TOOL)\s*:\s*)");
+  // "CHANGE TOOL: ...", "TOOL: ...", pcb2gcode's "MSG, CHANGE TOOL BIT TO CUTTER DIAMETER
+  // 0.05906IN", a header's "USE A 1/32INCH BIT".
+  static const std::regex prefix(
+      R"(^\s*(?:MSG\s*,\s*)?(?:CHANGE\s+TOOL(?:\s+BIT\s+TO)?|TOOL\s*CHANGE|TOOL|USE\s+AN?)\s*:?\s*)");
   const std::string text = trim(std::regex_replace(upper, prefix, ""));
   if (!guess_shape(text)) return std::nullopt;
   DescribedTool d;
   d.numbered = false;
   d.tool.description = text;
-  if (auto dia = keyed_diameter(text))
+  // A size with its unit says more than the program's units.
+  static const std::regex unit_size(R"(\d\s*(?:MM|IN\b|INCH|"))");
+  std::optional<double> with_unit;
+  if (std::regex_search(text, unit_size)) with_unit = size_in_description(text, units.inch);
+  if (with_unit)
+    d.tool.diameter_mm = *with_unit;
+  else if (auto dia = keyed_diameter(text))
     d.tool.diameter_mm = *dia * units.mm_per_unit();
   else if (auto size = size_in_description(text, units.inch))
     d.tool.diameter_mm = *size;

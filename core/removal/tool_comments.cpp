@@ -18,7 +18,7 @@ using detail::DescriptionUnits;
 // controller's label up to a few lines before "M6 T2"; posts write the tool's name on the tool
 // change line or next to it.
 constexpr int kLabelLinesBefore = 8;
-constexpr int kNameLinesAround = 2;
+constexpr int kNameLinesAround = 4; // pcb2gcode: T1, M5, G04, then its MSG naming the cutter
 
 // A comment that names a tool number and its size, in any of the numbered formats.
 std::optional<DescribedTool> read_numbered(const std::string& upper, DescriptionUnits units) {
@@ -128,10 +128,13 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
   };
   std::vector<Listed> listed;
 
+  // A program that selects no tool may name the one it cuts with in its header (Eagle's
+  // stepcraft.ulp "(Use a 1/32inch Bit)"): the comment-only lines before its first code.
+  bool in_header = context.selected_tools.empty();
   for (std::size_t index = 0; index < source.lines.size(); ++index) {
     const int line = int(index);
     const LineComments lc = line_comments(source.line_text(index), context.dialect);
-    if (lc.has_code) in_tool_list = false;
+    if (lc.has_code) in_tool_list = in_header = false;
     for (const LineComment& c : lc.comments) {
       const std::string upper = detail::to_upper(c.text);
       if (upper == "REQUIRED TOOLS:") {
@@ -142,6 +145,11 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
         if (auto t = detail::read_free_tool(upper, units)) listed.push_back({*t, line, c.column});
         continue;
       }
+      if (in_header && !read_numbered(upper, units))
+        if (auto t = detail::read_free_tool(upper, units)) {
+          listed.push_back({*t, line, c.column});
+          continue;
+        }
       if (auto t = read_numbered(upper, units)) {
         tools.add(*t, line, c.column, true);
         continue;

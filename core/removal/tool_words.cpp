@@ -40,7 +40,8 @@ std::optional<ShapeGuess> guess_shape(std::string_view t) {
   } else if (has(t, "DRILL")) { // twist drills; a centre drill is read by its point
     g.shape = ToolShape::Drill;
   } else if (has(t, "END MILL") || has(t, "ENDMILL") || has(t, "FLAT") || has(t, "FACE") ||
-             has(t, "SLOT") || has(t, "MILL") || has(t, "REAM") || has(t, "BOR") || has(t, "TAP")) {
+             has(t, "SLOT") || has(t, "MILL") || has(t, "REAM") || has(t, "BOR") || has(t, "TAP") ||
+             has(t, "CUTTER") || has(t, "BIT")) { // router bits, pcb2gcode's "cutter"
     g.shape = ToolShape::FlatEndMill;
   } else {
     return std::nullopt;

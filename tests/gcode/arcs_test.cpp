@@ -161,3 +161,19 @@ TEST_CASE("G93 arcs get the feed that makes them last 1/F minutes") {
   REQUIRE(rates.size() == 1);
   CHECK(rates[0].value == doctest::Approx(5 * std::numbers::pi * 2)); // length * F
 }
+
+TEST_CASE("a full circle of zero radius: no motion with a warning under Mach3, refused by LinuxCNC") {
+  // Eagle's stepcraft.ulp writes one for every hole smaller than its bit.
+  const std::string text = "G21 G90\nG0 X1 Y1 Z0\nG1 Z-0.15 F30\nG3 X1 Y1 I0.000 F360\nG0 Z1\nM2\n";
+  const Toolpath mach3 = run(text, "mach3");
+  CHECK(errors(mach3) == 0);
+  CHECK(moves(mach3).size() == 3); // the arc is not among them
+  bool warned = false;
+  for (const Diagnostic& d : mach3.result.diagnostics)
+    warned = warned || (d.severity == Severity::Warning && d.line == 4 &&
+                        d.message.find("zero radius") != std::string::npos);
+  CHECK(warned);
+  CHECK(errors(run(text, "linuxcnc")) == 1);
+  // A zero-radius arc that goes somewhere is an error everywhere.
+  CHECK(errors(run("G21 G90\nG0 X1 Y1 Z0\nG3 X2 Y1 I0 J0 F100\nM2\n", "mach3")) >= 1);
+}

@@ -297,3 +297,33 @@ TEST_CASE("CAMotics TPL: the tool's name just before its tool change") {
   CHECK(tools.at(2).diameter_mm == doctest::Approx(3.175));
   CHECK(diags.empty());
 }
+
+TEST_CASE("pcb2gcode: the cutter named in the message after its tool change") {
+  std::vector<Diagnostic> diags;
+  const auto inch = read_tools("( pcb2gcode 3.0.1 )\nG94\nG20\nG90\nG00 Z1.00000\nT1\nM5\n"
+                               "G04 P1.00000\n(MSG, Change tool bit to cutter diameter 0.05906in)\n"
+                               "M6\nM0\nM3\n",
+                               diags);
+  REQUIRE(inch.count(1));
+  CHECK(inch.at(1).diameter_mm == doctest::Approx(0.05906 * 25.4));
+  CHECK(inch.at(1).shape == ToolShape::FlatEndMill);
+  const auto mm = read_tools("G21\nT3\nM5\nG04 P1\n(MSG, Change tool bit to mill diameter 0.15000mm)\n"
+                             "M0\n",
+                             diags);
+  REQUIRE(mm.count(3));
+  CHECK(mm.at(3).diameter_mm == doctest::Approx(0.15));
+  CHECK_FALSE(has_warning(diags));
+}
+
+TEST_CASE("a program that selects no tool: the one its header names (Eagle stepcraft.ulp)") {
+  std::vector<Diagnostic> diags;
+  const auto tools = read_tools(
+      "(RS-274 Compatible G-code generated for UCCNC controller and Stepcraft 2 Mill)\n"
+      "(Created by in EagleCAD with the stepcraft.ulp 0.2.)\n(Use a 1/32inch Bit)\n\nG90 G94 G49\n"
+      "G21\nG00 Z5\nG01 Z-0.1 F300\n(Use a 1/64inch Bit)\n",
+      diags);
+  REQUIRE(tools.size() == 1);
+  REQUIRE(tools.count(0));
+  CHECK(tools.at(0).diameter_mm == doctest::Approx(25.4 / 32));
+  CHECK_FALSE(has_warning(diags));
+}

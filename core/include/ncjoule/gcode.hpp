@@ -118,6 +118,9 @@ struct Dialect {
   // Two G codes of one modal group in a block: the last one counts (Fanuc), where LinuxCNC
   // refuses the block.
   bool last_code_of_group_wins = false;
+  // A full circle of zero radius (start, end and centre at one point, as Eagle's stepcraft.ulp
+  // writes for holes smaller than its bit) is no motion (Mach3, UCCNC), where LinuxCNC refuses it.
+  bool zero_radius_circle_is_no_motion = false;
   std::string comment_open = "("; // what the annotator writes
   std::string comment_close = ")";
 };

@@ -50,7 +50,8 @@ for target in "${targets[@]}"; do
   esac
   limit=(-max_total_time="$seconds")
   [ -n "${RUNS:-}" ] && limit=(-runs="$RUNS")
-  echo "== fuzz_$target (${RUNS:+$RUNS runs}${RUNS:-${seconds} s}; corpus: $corpus)"
+  if [ -n "${RUNS:-}" ]; then what="$RUNS runs"; else what="${seconds} s"; fi
+  echo "== fuzz_$target ($what; corpus: $corpus)"
   status=0
   "$out/fuzz_$target" "$corpus" "$seeds" "${limit[@]}" -max_len="$max_len" -timeout=10 \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" \

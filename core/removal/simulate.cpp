@@ -32,7 +32,8 @@ std::vector<MotionSample> samples_of(const TimedCommand& tc, const CanonCommand&
                                      double max_step_mm) {
   if (tc.samples.size() >= 2) return tc.samples;
   const double length = move_length(cmd);
-  const int n = std::max(1, int(std::ceil(length / max_step_mm - 1e-9)));
+  // At most 100,000 points, as the planner samples (a move to X1e23 is not a billion steps).
+  const int n = int(std::clamp(std::ceil(length / max_step_mm - 1e-9), 1.0, 1e5));
   std::vector<MotionSample> out(std::size_t(n) + 1);
   for (int k = 0; k <= n; ++k) {
     const double u = double(k) / n;

@@ -45,11 +45,19 @@ struct FootprintRange {
   bool empty() const { return i0 > i1 || j0 > j1; }
 };
 
+// A column index as an int, clamped far outside any grid first: a step at X1e23 (a program's
+// absurd coordinate) must give an index past the grid, not an overflowing conversion.
+inline int clamped_index(double v) {
+  constexpr double kFar = 1e9;
+  if (!(v > -kFar)) return -int(kFar);
+  if (!(v < kFar)) return int(kFar);
+  return int(v);
+}
 inline int first_column_index(double lo, double origin, double d) {
-  return int(std::ceil((lo - origin) / d - 0.5));
+  return clamped_index(std::ceil((lo - origin) / d - 0.5));
 }
 inline int last_column_index(double hi, double origin, double d) {
-  return int(std::floor((hi - origin) / d - 0.5));
+  return clamped_index(std::floor((hi - origin) / d - 0.5));
 }
 
 inline FootprintRange footprint_range(const GridFrame& grid, const SweptStep& step) {

@@ -20,6 +20,7 @@
 
 #include "engines.hpp"
 #include "swept_step.hpp"
+#include "tile_sum.hpp"
 
 namespace ncjoule::detail {
 namespace {
@@ -62,8 +63,8 @@ public:
   }
 
   bool material_at(const Point3& p) const override {
-    const int i = int(std::floor((p.x - grid_.x0) / grid_.dx));
-    const int j = int(std::floor((p.y - grid_.y0) / grid_.dy));
+    const int i = detail::clamped_index(std::floor((p.x - grid_.x0) / grid_.dx));
+    const int j = detail::clamped_index(std::floor((p.y - grid_.y0) / grid_.dy));
     if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return false;
     const std::size_t c = std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i);
     double z = grid_.z0;

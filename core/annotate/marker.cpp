@@ -61,10 +61,15 @@ std::string checksum(std::string_view content, MarkKind kind) {
 }
 
 std::string marked_comment(std::string_view content, MarkKind kind, const CommentStyle& style) {
+  // Only safe characters, whatever a field holds: one that is not would end the comment for
+  // match_marked_comment, and strip() would leave it in the program.
+  std::string safe(content);
+  for (char& c : safe)
+    if (!is_safe_char(c)) c = '_';
   std::string out = style.open;
-  out += content;
+  out += safe;
   out += kSumKey;
-  out += checksum(content, kind);
+  out += checksum(safe, kind);
   out += style.close;
   return out;
 }

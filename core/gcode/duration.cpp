@@ -24,7 +24,10 @@ ClockParts split_duration(double seconds, double step) {
 std::string huge_hours(double hours) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", hours);
-  return text;
+  // "1.67e25", not "1.67e+25": a '+' is not a character every controller takes in a comment.
+  std::string out = text;
+  if (const std::size_t plus = out.find("e+"); plus != std::string::npos) out.erase(plus + 1, 1);
+  return out;
 }
 
 std::string duration_words(double seconds) {

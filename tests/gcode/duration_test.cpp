@@ -18,8 +18,8 @@ TEST_CASE("durations in words and on a clock") {
 }
 
 TEST_CASE("durations never overflow and never go negative") {
-  CHECK(duration_words(6e28) == "1.67e+25 h");
-  CHECK(duration_clock(6e28) == "1.67e+25 h");
+  CHECK(duration_words(6e28) == "1.67e25 h");
+  CHECK(duration_clock(6e28) == "1.67e25 h");
   CHECK(duration_words(1e12) == "277777777 h 46 min 40.0 s");
   CHECK(duration_words(-5) == "0.0 s");
   CHECK(duration_words(std::numeric_limits<double>::quiet_NaN()) == "0.0 s");

@@ -1,6 +1,6 @@
 // Durations as ncjoule writes them: the one place that turns seconds into hours, minutes and
 // seconds. Negative, NaN and infinite durations read as 0; hours are never an integer type, so
-// no duration overflows (a 6e28 s move is "1.67e+25 h", not a negative number).
+// no duration overflows (a 6e28 s move is "1.67e25 h", not a negative number).
 #pragma once
 
 #include <string>
@@ -20,7 +20,7 @@ ClockParts split_duration(double seconds, double step);
 std::string duration_words(double seconds);
 // "2:05", "1:02:03" (charts and tables).
 std::string duration_clock(double seconds);
-// Hours beyond what a clock face shows as digits: "1.67e+25" (with the caller's unit).
+// Hours beyond what a clock face shows as digits: "1.67e25" (with the caller's unit).
 std::string huge_hours(double hours);
 
 } // namespace ncjoule

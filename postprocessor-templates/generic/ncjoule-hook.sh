@@ -128,8 +128,8 @@ fi
 # Watch mode
 # ---------------------------------------------------------------------------------------------
 [ -d "$watch" ] || die "--watch $watch: not a folder"
-state=$(mktemp "${TMPDIR:-/tmp}/ncjoule-hook.XXXXXX") || die "cannot make a temporary file"
-trap 'rm -f "$state" "$state.new"' EXIT
+state=$(mktemp -d "${TMPDIR:-/tmp}/ncjoule-hook.XXXXXX") || die "cannot make a temporary folder"
+trap 'rm -rf "$state"' EXIT
 trap 'exit 130' INT TERM
 
 wanted() {
@@ -148,19 +148,28 @@ signature() {
   stat -c '%s %Y' "$1" 2>/dev/null || stat -f '%z %m' "$1" 2>/dev/null
 }
 
+# The state of a file: one small file in the state folder, named by a checksum of the path, so
+# that no character of a file name (tab, newline, backslash) can confuse it. It holds
+# "STATUS SIZE MTIME", STATUS being seen (waiting for it to stop growing), done or failed (not
+# tried again until it changes).
+state_file() {
+  printf '%s/%s' "$state" "$(printf '%s' "$1" | cksum | tr ' ' '_')"
+}
+
 # One look at the folder; sets `pending` to the number of files still growing or not yet seen
-# twice. The state file holds one line per file: STATUS<TAB>SIGNATURE<TAB>PATH, STATUS being
-# seen (waiting for it to stop growing), done or failed (not tried again until it changes).
+# twice. Stops early when --timeout has passed.
 look() {
   pending=0
-  : > "$state.new"
   for f in "$watch"/*; do
+    if [ "$timeout" != 0 ] && [ $(( $(date +%s) - start )) -ge "$timeout" ]; then return; fi
     [ -f "$f" ] || continue
     wanted "$f" || continue
     sig=$(signature "$f")
-    old=$(awk -F '\t' -v p="$f" '$3 == p { print $1 "\t" $2 }' "$state")
-    old_status=${old%%	*}
-    old_sig=${old#*	}
+    sf=$(state_file "$f")
+    old=""
+    [ -f "$sf" ] && old=$(cat "$sf")
+    old_status=${old%% *}
+    old_sig=${old#* }
     status=seen
     if [ -n "$old" ] && [ "$old_sig" = "$sig" ]; then
       case "$old_status" in
@@ -180,9 +189,8 @@ look() {
     else
       pending=$((pending + 1))
     fi
-    printf '%s\t%s\t%s\n' "$status" "$sig" "$f" >> "$state.new"
+    printf '%s %s' "$status" "$sig" > "$sf"
   done
-  mv "$state.new" "$state"
 }
 
 start=$(date +%s)

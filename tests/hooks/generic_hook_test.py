@@ -167,6 +167,24 @@ def main():
           "watch --timeout: annotated a partial file (strip differs from the whole program)")
     check(r.stdout.decode().count("annotated") == 1, "watch --timeout: annotated %r" % r.stdout.decode())
 
+    case("folder: names with a tab, a newline and a backslash; --once ends, --timeout holds")
+    watch3 = os.path.join(folder, "out3")
+    os.makedirs(watch3)
+    odd = [os.path.join(watch3, n) for n in ("O 4\t1.nc", "O4\n2.nc", "O4\\3.nc")]
+    for path in odd:
+        shutil.copyfile(os.path.join(SAMPLES, A + ".ngc"), path)
+    started = time.time()
+    r = hook("--ncjoule", NCJOULE, "--machine", MACHINE, "--interval", "1", "--watch", watch3,
+             "--once", timeout=60)
+    check(r.returncode == 0 and all(annotated(read(p)) for p in odd),
+          "odd names: not all annotated: %r" % r.stdout.decode())
+    check(time.time() - started < 30, "odd names: --once took %.0f s" % (time.time() - started))
+    started = time.time()
+    r = hook("--ncjoule", NCJOULE, "--machine", MACHINE, "--interval", "1", "--watch", watch3,
+             "--timeout", "3", timeout=60)
+    check(r.returncode == 0 and time.time() - started < 8,
+          "--timeout 3 stopped after %.1f s" % (time.time() - started))
+
     shutil.rmtree(folder, ignore_errors=True)
     if failures:
         print("%d failure(s)" % len(failures))

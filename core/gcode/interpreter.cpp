@@ -117,6 +117,10 @@ void Interpreter::emit(CanonCommand c) {
     stop();
     return;
   }
+  if (is_move(c.kind)) {
+    c.start_known = known_axes_ == 7;
+    known_axes_ |= axes_being_set_;
+  }
   sink_(c);
 }
 

@@ -204,7 +204,11 @@ private:
 
   // Modal state.
   ModalState state_;
-  Pose pos_;                   // current position, program coordinates, mm
+  Pose pos_; // current position, program coordinates, mm
+  // X, Y, Z (bits 0..2) the program has set (an absolute or machine-coordinate word, or a
+  // return home), and those the move being made sets; a move starts where it is known only
+  // once all three are.
+  unsigned known_axes_ = 0, axes_being_set_ = 0;
   std::array<Pose, 10> g5x_{}; // work offsets 1..9 (mm)
   int g5x_index_ = 1;
   Pose g92_;                 // G92 offsets (mm)

@@ -82,6 +82,7 @@ Pose Interpreter::target_from_words(const BlockValues& v, bool machine_coordinat
     } else if (incremental_) {
       target += axis(here, i);
     }
+    if (i < 3 && (machine_coordinates || !incremental_)) axes_being_set_ |= 1u << i;
     *axis_ref(end, i) = target;
   }
   if (framed) {
@@ -255,8 +256,7 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
     }
     const double min_radius = arc_tolerances(state_.inch).radius;
     if (std::hypot(sf - cf, ss - cs) < min_radius || std::hypot(ef - cf, es - cs) < min_radius) {
-      const bool point =
-          std::hypot(end.x - pos_.x, end.y - pos_.y, end.z - pos_.z) < min_radius;
+      const bool point = std::hypot(end.x - pos_.x, end.y - pos_.y, end.z - pos_.z) < min_radius;
       if (point && dialect_.zero_radius_circle_is_no_motion) {
         warning(col, "arc of zero radius: no motion (" + dialect_.name +
                          " passes over it; LinuxCNC would refuse it)");
@@ -336,9 +336,13 @@ void Interpreter::go_home(const BlockValues& v, int base) {
     straight(CanonKind::Traverse, mid);
     Pose end = mid;
     for (int i = 0; i < 6; ++i)
-      if (v.has(kAxisLetters[i])) *axis_ref(end, i) = axis(home_prog, i);
+      if (v.has(kAxisLetters[i])) {
+        *axis_ref(end, i) = axis(home_prog, i);
+        if (i < 3) axes_being_set_ |= 1u << i; // home is a known place
+      }
     straight(CanonKind::Traverse, end);
   } else {
+    axes_being_set_ = 7;
     straight(CanonKind::Traverse, home_prog);
   }
 }

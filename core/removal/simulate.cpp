@@ -206,6 +206,9 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     if (!is_move(cmd.kind)) continue;
     const auto tool = tools_.find(cmd.state.tool);
     if (tool == tools_.end()) continue;
+    // A rapid from where the program has not yet said the spindle is ("G0 X Y" before the
+    // first Z: the assumed start at Z0 is not the real one) removes nothing.
+    if (cmd.kind == CanonKind::Traverse && !cmd.start_known) continue;
     if (!first_move_checked_) {
       // A program that starts with its tool in the material: the stock, the work offset or the
       // start point is wrong, and the first moves would cut where nothing can.

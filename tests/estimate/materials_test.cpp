@@ -140,12 +140,37 @@ TEST_CASE("a cut asking the spindle for more than its rating is flagged on its b
 
 TEST_CASE("a program whose first move starts inside the stock is warned about") {
   const MachineProfile generic = profile("generic-3axis.toml");
-  // The stock's top is at Z5 here: the program starts (at Z0) inside it.
+  // The stock's top is at Z5 here. The assumed start (0,0,0, before the program sets a
+  // position) is inside it, but that is not where the spindle is: no warning.
   EstimateOptions options;
   options.stock = parse_stock_spec("box:-20,-20,-10,80,20,5");
   const Estimate e = estimate_program(make_source("inside.ngc", slot(8000)), generic, options);
-  CHECK(warned(e, "starts inside the stock"));
+  CHECK_FALSE(warned(e, "starts inside the stock"));
   CHECK_FALSE(warned(run(slot(8000), generic), "starts inside the stock"));
+  // A program that itself puts the tool in the material before its first move is warned about.
+  const Estimate inside = estimate_program(
+      make_source("inside.ngc", "G21 G90 G17\n(T1 D=6. CR=0. - ZMIN=-3. - FLAT END MILL)\n"
+                                "T1 M6\nS8000 M3\nG0 X-10 Y0 Z0\nG1 X60 F600\nG0 Z10\nM30\n"),
+      generic, options);
+  CHECK(warned(inside, "starts inside the stock"));
+}
+
+TEST_CASE("the first rapid from the assumed start removes nothing (G0 X Y before the first Z)") {
+  const MachineProfile generic = profile("generic-3axis.toml");
+  EstimateOptions options;
+  options.stock = parse_stock_spec("box:10,0,-13,220,60,5");
+  // A Fusion personal-use program: T1 without M6, then "G0 X Y" while Z is still the assumed 0,
+  // crossing the stock, then Z10 above it. Neither rapid is a collision.
+  const Estimate e = estimate_program(
+      make_source("fusion.nc", "(T1  D=2.7 CR=0 - ZMIN=-13.3 - flat end mill)\nG90 G94\nG17\n"
+                               "G21\nT1\nS5000 M3\nG54\nG0 X215.075 Y34.73\nZ10\n"
+                               "G1 Z-3.95 F250\nG0 Z10\nM30\n"),
+      generic, options);
+  CHECK_FALSE(warned(e, "collision"));
+  REQUIRE(e.removal);
+  // What the plunge removes: the 2.7 mm circle from Z5 down to Z-3.95.
+  const double plunge = 3.14159265 * 1.35 * 1.35 * 8.95;
+  CHECK(e.energy.removed_mm3 == doctest::Approx(plunge).epsilon(0.1));
 }
 
 TEST_CASE("with flutes known, a material with Kienzle's constants corrects for chip thickness") {

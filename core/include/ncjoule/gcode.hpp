@@ -226,6 +226,9 @@ struct CanonCommand {
                      // `line` itself outside subprograms)
   Pose start;        // moves: where the move starts (mm, program coordinates)
   Pose end;          // moves: where it ends
+  // False for a move that starts before the program has set X, Y and Z (the start is the
+  // assumed 0,0,0, not where the spindle is): "G0 X Y" before the first Z of most posts.
+  bool start_known = true;
   // Arcs: centre in the plane's two axes (X/Y for G17, Y/Z for G19, Z/X for G18), and the
   // rotation as rs274 prints it: +k = counter-clockwise with k-1 extra full turns, -k clockwise.
   double centre_first = 0, centre_second = 0;

@@ -178,7 +178,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   std::size_t streamed = 0;
   try {
     Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& timed) {
-      folder.take(c, timed);
+      folder.take(c, std::move(timed));
       ++streamed;
     });
     interpret(source, again, [&planner](const CanonCommand& c) { planner.add(c); });

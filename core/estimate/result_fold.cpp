@@ -45,10 +45,10 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
       removal_(removal), out_(out), expected_commands_(expected_commands),
       lines_(source.lines.size()), energy_(power, options.energy), operations_(source, dialect) {}
 
-void ResultFolder::take(const CanonCommand& command, const TimedCommand& timed) {
+void ResultFolder::take(const CanonCommand& command, TimedCommand&& timed) {
   batch_commands_.push_back(command);
-  batch_timed_.push_back(timed);
   batch_samples_ += timed.samples.size();
+  batch_timed_.push_back(std::move(timed)); // its samples are not copied
   if (batch_commands_.size() >= kBatchCommands || batch_samples_ >= kBatchSamples) run_batch();
 }
 

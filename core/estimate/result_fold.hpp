@@ -24,7 +24,7 @@ public:
                const EstimateOptions& options, RemovalSimulator* removal,
                std::size_t expected_commands, Estimate& out);
 
-  void take(const CanonCommand& command, const TimedCommand& timed);
+  void take(const CanonCommand& command, TimedCommand&& timed);
   // Folds what is left and fills the estimate's results; `total_s` is the program's time.
   void finish(double total_s);
 

@@ -100,7 +100,8 @@ bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
     machine = load_profile(path);
     return true;
   } catch (const ProfileError& e) {
-    std::cerr << "ncjoule: bad machine profile: " << e.what() << '\n';
+    print_diagnostics({e.diagnostic()});
+    std::cerr << "ncjoule: the machine profile " << path << " cannot be used (see above)\n";
     return false;
   }
 }

@@ -26,9 +26,8 @@ MachineProfile parse_profile(std::string_view text, const std::string& path) {
     document = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     const auto& where = e.source().begin;
-    throw ProfileError(path, "",
-                       "not valid TOML at line " + std::to_string(where.line) + ", column " +
-                           std::to_string(where.column) + ": " + std::string(e.description()));
+    throw ProfileError(path, "", "not valid TOML: " + std::string(e.description()), int(where.line),
+                       int(where.column));
   }
   TableReader root(document, path, "");
   MachineProfile profile;

@@ -45,7 +45,10 @@ std::string TableReader::path_of(std::string_view key) const {
 }
 
 void TableReader::fail(std::string_view key, const std::string& reason) const {
-  throw ProfileError(file_, path_of(key), reason);
+  // Where: the key's value, else the table that lacks it.
+  const toml::node* node = table_.get(key);
+  const toml::source_position where = node ? node->source().begin : table_.source().begin;
+  throw ProfileError(file_, path_of(key), reason, int(where.line), int(where.column));
 }
 
 const toml::node* TableReader::find(std::string_view key) {

@@ -92,10 +92,13 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     stock_ = make_box_stock(spec.box, format_box(spec.box) + " (given)");
     break;
   case StockSpec::Kind::Stl: {
-    std::string error;
-    auto mesh = read_stl(spec.stl_path, error);
+    std::vector<Diagnostic> problems;
+    auto mesh = read_stl(spec.stl_path, problems);
     if (!mesh) {
-      diag(Severity::Error, 0, "stock: " + error + "; nothing is removed");
+      for (Diagnostic& d : problems) {
+        d.message = "stock: " + d.message + "; nothing is removed";
+        totals_.diagnostics.push_back(std::move(d));
+      }
       totals_.stock_description = "none (" + spec.stl_path + " could not be read)";
       return;
     }

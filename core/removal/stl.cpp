@@ -1,6 +1,8 @@
 // Reading STL files, binary and ASCII.
+#include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -52,9 +54,17 @@ std::optional<TriangleMesh> parse_binary(std::string_view bytes, std::string& er
   return mesh;
 }
 
-std::optional<TriangleMesh> parse_ascii(std::string_view bytes, std::string& error) {
+// `line` is set to where an error was found (1-based).
+std::optional<TriangleMesh> parse_ascii(std::string_view bytes, std::string& error, int& line) {
   TriangleMesh mesh;
   std::istringstream in{std::string(bytes)};
+  auto fail = [&](std::string why) -> std::optional<TriangleMesh> {
+    const std::streamoff at = in.tellg();
+    const std::size_t end = at < 0 ? bytes.size() : std::size_t(at);
+    line = 1 + int(std::count(bytes.begin(), bytes.begin() + std::min(end, bytes.size()), '\n'));
+    error = std::move(why);
+    return std::nullopt;
+  };
   std::string word;
   Triangle tri;
   int vertex = 0;
@@ -64,30 +74,19 @@ std::optional<TriangleMesh> parse_ascii(std::string_view bytes, std::string& err
     for (char& ch : word)
       ch = char(std::tolower(static_cast<unsigned char>(ch)));
     if (word == "vertex") {
-      if (vertex >= 3) {
-        error = "ASCII STL facet with more than three vertices";
-        return std::nullopt;
-      }
+      if (vertex >= 3) return fail("ASCII STL facet with more than three vertices");
       for (int k = 0; k < 3; ++k) {
         std::string number;
-        if (!(in >> number)) {
-          error = "ASCII STL ends inside a vertex";
-          return std::nullopt;
-        }
+        if (!(in >> number)) return fail("ASCII STL ends inside a vertex");
         double value = 0;
         const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), value);
-        if (ec != std::errc() || end != number.data() + number.size()) {
-          error = "ASCII STL vertex coordinate '" + number + "' is not a number";
-          return std::nullopt;
-        }
+        if (ec != std::errc() || end != number.data() + number.size() || !std::isfinite(value))
+          return fail("ASCII STL vertex coordinate '" + number + "' is not a finite number");
         tri.v[vertex][k] = value;
       }
       ++vertex;
     } else if (word == "endfacet") {
-      if (vertex != 3) {
-        error = "ASCII STL facet without three vertices";
-        return std::nullopt;
-      }
+      if (vertex != 3) return fail("ASCII STL facet without three vertices");
       mesh.triangles.push_back(tri);
       vertex = 0;
     }
@@ -101,22 +100,25 @@ std::optional<TriangleMesh> parse_ascii(std::string_view bytes, std::string& err
 
 } // namespace
 
-std::optional<TriangleMesh> parse_stl(std::string_view bytes, std::string& error) {
-  if (looks_binary(bytes)) return parse_binary(bytes, error);
-  return parse_ascii(bytes, error);
+std::optional<TriangleMesh> parse_stl(std::string_view bytes, const std::string& path,
+                                      std::vector<Diagnostic>& diagnostics) {
+  std::string error;
+  int line = 0;
+  auto mesh = looks_binary(bytes) ? parse_binary(bytes, error) : parse_ascii(bytes, error, line);
+  if (!mesh) diagnostics.push_back({Severity::Error, path, line, 0, error});
+  return mesh;
 }
 
-std::optional<TriangleMesh> read_stl(const std::string& path, std::string& error) {
+std::optional<TriangleMesh> read_stl(const std::string& path,
+                                     std::vector<Diagnostic>& diagnostics) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    error = "cannot open STL file '" + path + "'";
+    diagnostics.push_back({Severity::Error, path, 0, 0, "cannot open the STL file"});
     return std::nullopt;
   }
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  auto mesh = parse_stl(buffer.str(), error);
-  if (!mesh) error = path + ": " + error;
-  return mesh;
+  return parse_stl(buffer.str(), path, diagnostics);
 }
 
 } // namespace ncjoule

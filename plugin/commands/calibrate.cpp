@@ -215,8 +215,7 @@ int run_calibrate(const CalibrateCliOptions& o) {
     try {
       machine = parse_profile(base_text, o.machine);
     } catch (const ProfileError& e) {
-      std::fprintf(stderr, "%s: %s%s%s\n", e.file().c_str(), e.key().c_str(),
-                   e.key().empty() ? "" : ": ", e.reason().c_str());
+      print_diagnostics({e.diagnostic()});
       return kInputError;
     }
     constants = machine.power;

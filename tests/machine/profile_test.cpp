@@ -162,8 +162,21 @@ TEST_CASE("a maximum feed above the rapid rate is refused") {
 TEST_CASE("text that is not TOML and files that do not exist name the file") {
   const ProfileError e = refusal("name = [unclosed");
   CHECK(e.file() == "bad.toml");
-  CHECK(std::string(e.what()).find("line 1") != std::string::npos);
+  CHECK(e.line() == 1);
+  CHECK(std::string(e.what()).find("not valid TOML") != std::string::npos);
   CHECK_THROWS_AS(load_profile("no/such/profile.toml"), ProfileError);
+}
+
+TEST_CASE("a refused profile is a diagnostic with the line and column of the key") {
+  // The value that is wrong: its own line and column; a key that is missing: its table's.
+  const ProfileError bad = refusal("name = \"x\"\nsource = \"test\"\n[kinematics]\n"
+                                   "rapid_mm_min = -5\n");
+  const Diagnostic d = bad.diagnostic();
+  CHECK(d.severity == Severity::Error);
+  CHECK(d.file == "bad.toml");
+  CHECK(d.message.find("key '") == 0);
+  CHECK(d.line >= 3);
+  CHECK(d.column >= 1);
 }
 
 TEST_CASE("shipped profiles detect the dialect and carry a default tool with its source") {

@@ -50,8 +50,8 @@ TEST_CASE("STL stock, binary and ASCII") {
 
   for (const std::string& path : {binary, ascii}) {
     CAPTURE(path);
-    std::string error;
-    const auto read = read_stl(path, error);
+    std::vector<Diagnostic> problems;
+    const auto read = read_stl(path, problems);
     REQUIRE(read);
     CHECK(read->triangles.size() == 12);
     const Box3 b = read->bounds();
@@ -78,8 +78,8 @@ TEST_CASE("STL stock with a gap: columns hold two intervals") {
   TriangleMesh two = box_mesh({0, 0, 0, 10, 10, 2});
   const TriangleMesh top = box_mesh({0, 0, 3, 10, 10, 5});
   two.triangles.insert(two.triangles.end(), top.triangles.begin(), top.triangles.end());
-  std::string error;
-  const auto mesh = parse_stl(ascii_stl(two), error);
+  std::vector<Diagnostic> problems;
+  const auto mesh = parse_stl(ascii_stl(two), "two.stl", problems);
   REQUIRE(mesh);
   const auto stock = make_mesh_stock(*mesh, "two slabs");
   const Tool t = flat_end_mill(1, 4);
@@ -151,4 +151,20 @@ TEST_CASE("default stock: feed plunges from a clearance plane do not raise its t
   CHECK(r.stock_volume_mm3 == doctest::Approx(46 * 6 * 2).epsilon(1e-9));
   CHECK(r.removed_mm3 == doctest::Approx(layer).epsilon(2e-3));
   CHECK(r.commands[2].removed_mm3 == 0); // the first slot runs along the top
+}
+
+TEST_CASE("a bad STL is a diagnostic naming the file and, in ASCII, the line") {
+  std::vector<Diagnostic> problems;
+  const std::string text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                           "vertex 1 0 nan\nvertex 0 1 0\nendloop\nendfacet\nendsolid x\n";
+  CHECK_FALSE(parse_stl(text, "nan.stl", problems));
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].severity == Severity::Error);
+  CHECK(problems[0].file == "nan.stl");
+  CHECK(problems[0].line == 5);
+  CHECK(problems[0].message.find("finite") != std::string::npos);
+  problems.clear();
+  CHECK_FALSE(read_stl("no/such/file.stl", problems));
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].file == "no/such/file.stl");
 }

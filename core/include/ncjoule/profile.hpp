@@ -18,15 +18,20 @@ namespace ncjoule {
 
 class ProfileError : public std::runtime_error {
 public:
-  ProfileError(std::string file, std::string key, std::string reason);
+  ProfileError(std::string file, std::string key, std::string reason, int line = 0, int column = 0);
   const std::string& file() const { return file_; }
   // Dotted path of the offending key ("kinematics.x.accel_mm_s2"); empty for errors of the
   // whole file (unreadable, not TOML).
   const std::string& key() const { return key_; }
   const std::string& reason() const { return reason_; }
+  int line() const { return line_; }     // 1-based, 0 when the whole file is meant
+  int column() const { return column_; } // 1-based, 0 when not known
+  // The refusal as every reader reports a problem: file, line, column, severity, message.
+  Diagnostic diagnostic() const;
 
 private:
   std::string file_, key_, reason_;
+  int line_ = 0, column_ = 0;
 };
 
 // Parses profile text; `path` is used in error messages and stored as source_path.

@@ -164,9 +164,11 @@ struct TriangleMesh {
   std::vector<Triangle> triangles;
   Box3 bounds() const;
 };
-// Binary or ASCII STL, in mm. On failure returns std::nullopt and sets error.
-std::optional<TriangleMesh> parse_stl(std::string_view bytes, std::string& error);
-std::optional<TriangleMesh> read_stl(const std::string& path, std::string& error);
+// Binary or ASCII STL, in mm. On failure returns std::nullopt with an error in `diagnostics`
+// (the file, and the line of an ASCII STL).
+std::optional<TriangleMesh> parse_stl(std::string_view bytes, const std::string& path,
+                                      std::vector<Diagnostic>& diagnostics);
+std::optional<TriangleMesh> read_stl(const std::string& path, std::vector<Diagnostic>& diagnostics);
 
 // The XY grid of columns shared by both engines: column (i, j) has its centre at
 // (x0 + (i + 0.5) * dx, y0 + (j + 0.5) * dy). The grid covers the stock's XY bounds exactly.

@@ -79,6 +79,33 @@ std::optional<double> keyed_diameter(const std::string& upper) {
   return std::nullopt;
 }
 
+// A tool from free text that names its size: the diameter (a size with its unit first, then a
+// keyed one, then a bare size in program units), a keyed corner radius, the shape words.
+// std::nullopt when the text gives no size. A missing type is only a note: free text need not
+// name one.
+std::optional<DescribedTool> sized_description(const std::string& text, int number, bool numbered,
+                                               DescriptionUnits units) {
+  static const std::regex unit_size(R"(\d\s*(?:MM|IN\b|INCH|"))");
+  DescribedTool d;
+  d.numbered = numbered;
+  d.tool.number = number;
+  d.tool.description = text;
+  std::optional<double> with_unit;
+  if (std::regex_search(text, unit_size)) with_unit = size_in_description(text, units.inch);
+  if (with_unit)
+    d.tool.diameter_mm = *with_unit;
+  else if (auto dia = keyed_diameter(text))
+    d.tool.diameter_mm = *dia * units.mm_per_unit();
+  else if (auto size = size_in_description(text, units.inch))
+    d.tool.diameter_mm = *size;
+  else
+    return std::nullopt;
+  if (auto r = keyed_corner_radius(text)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
+  apply_shape(d, text);
+  if (d.remark) d.remark->severity = Severity::Note;
+  return d;
+}
+
 } // namespace
 
 std::optional<DescribedTool> read_fusion_tool(const std::string& upper, DescriptionUnits units) {
@@ -149,20 +176,7 @@ std::optional<DescribedTool> read_numbered_list_tool(const std::string& upper,
   static const std::regex entry(R"(^T?\s*(\d+)\s*=\s*(.+)$)");
   std::smatch m;
   if (!std::regex_match(upper, m, entry)) return std::nullopt;
-  const std::string text = trim(m[2]);
-  DescribedTool d;
-  d.tool.number = std::atoi(m[1].str().c_str());
-  d.tool.description = text;
-  if (auto dia = keyed_diameter(text))
-    d.tool.diameter_mm = *dia * units.mm_per_unit();
-  else if (auto size = size_in_description(text, units.inch))
-    d.tool.diameter_mm = *size;
-  else
-    return std::nullopt;
-  if (auto r = keyed_corner_radius(text)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
-  apply_shape(d, text);
-  if (d.remark) d.remark->severity = Severity::Note; // free text: a missing type is no fault
-  return d;
+  return sized_description(trim(m[2]), std::atoi(m[1].str().c_str()), true, units);
 }
 
 std::optional<DescribedTool> read_keyed_tool(const std::string& upper, DescriptionUnits units) {
@@ -170,20 +184,7 @@ std::optional<DescribedTool> read_keyed_tool(const std::string& upper, Descripti
       R"(^\s*(?:T|TOOL\s*(?:NO\.?|NUMBER|#)?)\s*[#:.\-]?\s*0*(\d+)(?=[\s\-:,]|$)\s*[-:,]?\s*(.*)$)");
   std::smatch m;
   if (!std::regex_match(upper, m, head)) return std::nullopt;
-  const std::string rest = trim(m[2]);
-  DescribedTool d;
-  d.tool.number = std::atoi(m[1].str().c_str());
-  d.tool.description = rest;
-  if (auto dia = keyed_diameter(rest))
-    d.tool.diameter_mm = *dia * units.mm_per_unit();
-  else if (auto size = size_in_description(rest, units.inch))
-    d.tool.diameter_mm = *size;
-  else
-    return std::nullopt;
-  if (auto r = keyed_corner_radius(rest)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
-  apply_shape(d, rest);
-  if (d.remark) d.remark->severity = Severity::Note; // free text: a missing type is no fault
-  return d;
+  return sized_description(trim(m[2]), std::atoi(m[1].str().c_str()), true, units);
 }
 
 std::optional<DescribedTool> read_freecad_tool(const std::string& upper, DescriptionUnits units) {
@@ -205,24 +206,7 @@ std::optional<DescribedTool> read_free_tool(const std::string& upper, Descriptio
       R"(^\s*(?:MSG\s*,\s*)?(?:CHANGE\s+TOOL(?:\s+BIT\s+TO)?|TOOL\s*CHANGE|TOOL|USE\s+AN?)\s*:?\s*)");
   const std::string text = trim(std::regex_replace(upper, prefix, ""));
   if (!guess_shape(text)) return std::nullopt;
-  DescribedTool d;
-  d.numbered = false;
-  d.tool.description = text;
-  // A size with its unit says more than the program's units.
-  static const std::regex unit_size(R"(\d\s*(?:MM|IN\b|INCH|"))");
-  std::optional<double> with_unit;
-  if (std::regex_search(text, unit_size)) with_unit = size_in_description(text, units.inch);
-  if (with_unit)
-    d.tool.diameter_mm = *with_unit;
-  else if (auto dia = keyed_diameter(text))
-    d.tool.diameter_mm = *dia * units.mm_per_unit();
-  else if (auto size = size_in_description(text, units.inch))
-    d.tool.diameter_mm = *size;
-  else
-    return std::nullopt;
-  if (auto r = keyed_corner_radius(text)) d.tool.corner_radius_mm = *r * units.mm_per_unit();
-  apply_shape(d, text);
-  return d;
+  return sized_description(text, 0, false, units);
 }
 
 #undef NCJ_NUMBER

@@ -42,18 +42,21 @@ for target in "${targets[@]}"; do
   fi
   # Short inputs keep each target above a thousand runs a second (the pipeline plans, removes
   # and annotates every input; short programs still reach every code path).
+  # The pipeline gets a longer timeout: a 512-byte loop can be a legitimately long program
+  # (thousands of samples per move to plan, remove and integrate under the sanitizers).
+  timeout=10
   case "$target" in
     lexer) max_len=4096 ;;
     profile) max_len=2048 ;;
     interpreter) max_len=1024 ;;
-    *) max_len=512 ;;
+    *) max_len=512 timeout=60 ;;
   esac
   limit=(-max_total_time="$seconds")
   [ -n "${RUNS:-}" ] && limit=(-runs="$RUNS")
   if [ -n "${RUNS:-}" ]; then what="$RUNS runs"; else what="${seconds} s"; fi
   echo "== fuzz_$target ($what; corpus: $corpus)"
   status=0
-  "$out/fuzz_$target" "$corpus" "$seeds" "${limit[@]}" -max_len="$max_len" -timeout=10 \
+  "$out/fuzz_$target" "$corpus" "$seeds" "${limit[@]}" -max_len="$max_len" -timeout="$timeout" \
     -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" \
     > "$out/fuzz_$target.log" 2>&1 || status=$?
   grep -E '^(#[0-9]+ +(DONE|INITED)|SUMMARY|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb|artifact)' \

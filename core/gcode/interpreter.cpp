@@ -4,6 +4,7 @@
 #include "interpreter_impl.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include "codes.hpp"
@@ -158,8 +159,12 @@ void Interpreter::scan_labels() {
     lex_line(l, dialect_, b);
     if (!b.has_o) continue;
     if (b.o_keyword.empty()) {
-      if (!b.o_label.empty() && std::isdigit(static_cast<unsigned char>(b.o_label[0])))
-        program_numbers_.emplace(std::stol(b.o_label), i);
+      // A program number; one too long for a long (O1111...1) can be no M98 P target.
+      long number = 0;
+      const char* first = b.o_label.data();
+      const char* last = first + b.o_label.size();
+      const auto [end, ec] = std::from_chars(first, last, number);
+      if (ec == std::errc() && end != first) program_numbers_.emplace(number, i);
     } else {
       labels_[b.o_label].emplace_back(i, b.o_keyword);
     }

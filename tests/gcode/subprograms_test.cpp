@@ -125,3 +125,11 @@ TEST_CASE("runaway loops and recursion stop with a diagnostic, not a hang") {
   CHECK(errors(recursive) == 1);
   CHECK_FALSE(recursive.result.completed);
 }
+
+TEST_CASE("a program number too long for any number is no call target, and no crash") {
+  // Found by fuzzing: O followed by 80 digits threw out of the interpreter.
+  const Toolpath p =
+      run("O" + std::string(80, '1') + " (PART)\nG21 G90\nG0 X1 Y2 Z3\nM30\n", "fanuc");
+  CHECK(errors(p) == 0);
+  CHECK(moves(p).size() == 1);
+}

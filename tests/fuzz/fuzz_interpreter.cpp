@@ -13,7 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ncjoule::InterpreterOptions options;
     options.dialect = ncjoule::find_dialect(name);
     // Small limits: thousands of runs a second, and the limits themselves are exercised.
-    options.max_commands = 2000;
+    options.max_commands = 500;
     options.max_loop_iterations = 200;
     options.max_cycle_repeats = 50;
     options.max_arc_turns = 20;

@@ -47,6 +47,8 @@ printf 'G21 G90\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X%s\nG0 Z5\nG0 X1
   "$(printf '6%.0s' $(seq 100))" > far_then_drill.ngc
 # Found by fuzzing (UBSan): an arc ending at Y4e24 turned a column index into an int overflow.
 printf 'G21 G90\nT1 M6\nS5500 M3\nG0 X50 Y40 Z5\nG1 Z-3 F200\nG3 X42 Y4033333333333333333333333 I-7 J0 F800\nG0 Z15\nM30\n' > far_arc.ngc
+# Found by fuzzing: a peck cycle at R1e117 whose Q is no step there pecked forever.
+printf 'G21 G90\nG0 X0 Y0 Z5\nG83 X15 Y15 Z-15 R%s. Q4 F90\nG80\nM2\n' "$(printf '1%.0s' $(seq 118))" > endless_peck.ngc
 sed 's/^tool_change_s.*/tool_change_s = 1e308/' "$M" > huge_tool_change.toml
 mkdir profile_dir
 
@@ -61,6 +63,7 @@ case_ "exponent under Fanuc"     0 "no exponent" -- "$N" estimate exponent.ngc -
 case_ "arc of radius 1e13"       0 ""            -- "$N" estimate huge_radius.ngc -m "$M" --no-removal
 case_ "control bytes"            0 '\x1b'        -- "$N" estimate escapes.ngc -m "$M" --no-removal
 case_ "6e33 s move annotated"    0 ""            -- "$N" annotate far.ngc -m "$M" --no-removal
+case_ "peck Q4 at R1e117"          2 "pecks"       -- "$N" estimate endless_peck.ngc -m "$M" --no-removal --dialect fanuc
 case_ "arc to Y4e24 with removal"  0 "radius"      -- "$N" estimate far_arc.ngc -m "$M" --stock box:0,0,-5,100,80,0 --tool 1:flat:10
 case_ "X6e99 move, then removal" 0 ""            -- "$N" estimate far_then_drill.ngc -m "$M" --stock box:0,0,-5,20,20,0 --grid 0.5 --tool 1:flat:6
 case_ "tool_change_s = 1e308"    2 "plausible"   -- "$N" estimate "$P" -m huge_tool_change.toml

@@ -168,9 +168,18 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       break;
     case Motion::G83:
     case Motion::G73: {
-      // G83 retracts to R after every peck; G73 only backs off to break the chip.
+      // G83 retracts to R after every peck; G73 only backs off to break the chip. A peck that
+      // is no step at that height (Q4 at R1e117) or more pecks than a cycle may repeat would
+      // never end: refused before it runs.
+      const double pecks = (r - bottom) / q;
+      const std::size_t cap = options_.max_cycle_repeats ? options_.max_cycle_repeats : 2e9;
+      if (!(pecks <= double(cap)) || r - q == r) {
+        error(v.column['q' - 'a'], "Q" + number_text(q) + " from R to the bottom makes more than " +
+                                       std::to_string(cap) + " pecks: the cycle is refused");
+        return;
+      }
       double depth = r - q;
-      for (; depth > bottom; depth -= q) {
+      for (; depth > bottom && !finished_; depth -= q) {
         feed(a, b, depth);
         if (cycle == Motion::G83) traverse(a, b, r);
         traverse(a, b, depth + peck_clearance);

@@ -124,3 +124,15 @@ TEST_CASE("canned cycle errors: R below Z, peck without Q; a missing R only warn
   CHECK(with_severity(noq, Severity::Warning).size() == 1);
   CHECK(moves(noq).back() == T(1, 0, 1)); // drilled in one go
 }
+
+TEST_CASE("a peck cycle whose Q is no step at its R height is refused, not run forever") {
+  // Found by fuzzing: R1.1e117 with Q4 never got deeper (R - Q == R in floating point).
+  const Toolpath p = run("G21 G90\nG0 X0 Y0 Z5\nG83 X15 Y15 Z-15 R" + std::string(118, '1') +
+                             ". Q4 F90\nG80\nM2\n",
+                         "fanuc");
+  CHECK(errors(p) == 1);
+  CHECK(p.commands.size() < 100);
+  // As many pecks as a cycle may repeat, and one more.
+  CHECK(errors(run("G21 G90\nG0 X0 Y0 Z5\nG83 X1 Y1 Z-1000 R2 Q0.001 F90\nG80\nM2\n")) == 1);
+  CHECK(errors(run("G21 G90\nG0 X0 Y0 Z5\nG83 X1 Y1 Z-15 R2 Q4 F90\nG80\nM2\n")) == 0);
+}

@@ -231,7 +231,8 @@ void ResultFolder::finish(double total_s) {
     lines_[kept++] = b;
   }
   lines_.resize(kept);
-  lines_.shrink_to_fit();
+  // Shrinking copies: worth it only when much was dropped (a copy would double the peak).
+  if (kept < lines_.capacity() / 2) lines_.shrink_to_fit();
   out_.lines = std::move(lines_);
 }
 

@@ -90,10 +90,10 @@ PathReducer::PathReducer(std::size_t max_points)
 
 bool PathReducer::keeps(const PathPoint& last, const PathPoint& p) const {
   if (p.rapid != last.rapid) return true;
-  const double d = std::hypot(double(p.x - last.x), double(p.y - last.y), double(p.z - last.z));
-  if (d >= tolerance_mm_) return true;
+  const double dx = double(p.x - last.x), dy = double(p.y - last.y), dz = double(p.z - last.z);
+  if (dx * dx + dy * dy + dz * dz >= tolerance_mm_ * tolerance_mm_) return true;
   const double scale = std::max(1.0f, std::max(std::abs(last.power_w), std::abs(p.power_w)));
-  return std::abs(p.power_w - last.power_w) > 0.1 * scale;
+  return std::abs(p.power_w - last.power_w) > power_tolerance_ * scale;
 }
 
 void PathReducer::add(const PathPoint& point) {
@@ -108,15 +108,21 @@ void PathReducer::add(const PathPoint& point) {
 }
 
 void PathReducer::thin() {
-  while (points_.size() > max_points_ / 2) {
+  for (int pass = 0; pass < 8 && points_.size() > max_points_ / 2; ++pass) {
     tolerance_mm_ *= 2;
+    power_tolerance_ *= 2;
     std::vector<PathPoint> kept;
     kept.reserve(points_.size());
     for (const PathPoint& p : points_)
       if (kept.empty() || keeps(kept.back(), p)) kept.push_back(p);
-    if (kept.size() == points_.size() && tolerance_mm_ > 1e6) break; // nothing more to thin
     points_.swap(kept);
   }
+  if (points_.size() <= max_points_ / 2) return;
+  // The tolerances alone do not thin this path: keep every other point (the last included).
+  std::size_t kept = 0;
+  for (std::size_t i = points_.size() % 2 == 0 ? 1 : 0; i < points_.size(); i += 2)
+    points_[kept++] = points_[i];
+  points_.resize(kept);
 }
 
 std::vector<PathPoint> PathReducer::result() const {

@@ -41,8 +41,9 @@ private:
 
 // The toolpath for drawing, reduced to at most about `max_points`: a point is kept when the tool
 // has gone `tolerance` from the last one kept, when the motion changes between rapid and feed, or
-// when the power changes by a tenth; when too many are kept, the tolerance doubles and the kept
-// points are thinned again.
+// when the power changes by a tenth; when too many are kept, the tolerances double and the kept
+// points are thinned again. Should that not be enough (rapid and feed alternate on every move),
+// every other point is dropped, so that thinning stays rare and adding a point cheap.
 class PathReducer {
 public:
   explicit PathReducer(std::size_t max_points = 12000);
@@ -55,6 +56,7 @@ private:
 
   std::size_t max_points_;
   double tolerance_mm_ = 0.05;
+  double power_tolerance_ = 0.1; // relative
   std::vector<PathPoint> points_;
   PathPoint pending_; // the latest point, kept at the end whatever the tolerance
   bool has_pending_ = false;

@@ -61,7 +61,7 @@ void write_time_split(JsonWriter& w, const TimeSplit& t, bool removal_known) {
 }
 
 void write_block(JsonWriter& w, const LineSummary& b, const Estimate& e) {
-  w.begin_object();
+  w.begin_object_on_one_line();
   w.field("line", b.line + 1);
   w.field("kind", line_kind_name(b.kind));
   if (b.operation > 0 && b.operation <= e.operations.size())

@@ -21,10 +21,9 @@ void JsonWriter::flush_if_full() {
 }
 
 void JsonWriter::newline() {
-  if (indent_ <= 0) return;
+  if (indent_ <= 0 || one_line_levels_ > 0) return;
   put('\n');
-  for (std::size_t i = 0; i < levels_.size() * std::size_t(indent_); ++i)
-    put(' ');
+  buffer_.append(levels_.size() * std::size_t(indent_), ' ');
 }
 
 void JsonWriter::before_value() {
@@ -42,9 +41,12 @@ void JsonWriter::before_value() {
 
 JsonWriter& JsonWriter::key(std::string_view name) {
   before_value();
-  write_string(name);
+  // Keys are names the code chose (plain ASCII): written as they are, not scanned for escapes.
+  put('"');
+  put(name);
+  put('"');
   put(':');
-  if (indent_ > 0) put(' ');
+  if (indent_ > 0 && one_line_levels_ == 0) put(' ');
   after_key_ = true;
   return *this;
 }
@@ -55,6 +57,13 @@ void JsonWriter::begin_object() {
   levels_.push_back({false, true});
 }
 
+void JsonWriter::begin_object_on_one_line() {
+  before_value();
+  put('{');
+  levels_.push_back({false, true, true});
+  ++one_line_levels_;
+}
+
 void JsonWriter::begin_array() {
   before_value();
   put('[');
@@ -63,8 +72,12 @@ void JsonWriter::begin_array() {
 
 void JsonWriter::end_object() {
   const bool empty = levels_.back().empty;
+  const bool one_line = levels_.back().one_line;
   levels_.pop_back();
-  if (!empty) newline();
+  if (one_line)
+    --one_line_levels_;
+  else if (!empty)
+    newline();
   put('}');
 }
 
@@ -115,6 +128,12 @@ void JsonWriter::null() {
 
 namespace {
 
+// A byte that stands for itself inside a JSON string.
+bool is_plain(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u >= 0x20 && u < 0x7f && c != '"' && c != '\\';
+}
+
 // Length of the valid UTF-8 sequence at text[i], or 0 when the bytes there are not one.
 std::size_t utf8_length(std::string_view text, std::size_t i) {
   const unsigned char c = static_cast<unsigned char>(text[i]);
@@ -138,6 +157,15 @@ std::size_t utf8_length(std::string_view text, std::size_t i) {
 void JsonWriter::write_string(std::string_view text) {
   put('"');
   for (std::size_t i = 0; i < text.size(); ++i) {
+    // Runs of printable ASCII, which is nearly all of it, go in one append.
+    std::size_t plain = i;
+    while (plain < text.size() && is_plain(text[plain]))
+      ++plain;
+    if (plain > i) {
+      put(text.substr(i, plain - i));
+      i = plain;
+      if (i == text.size()) break;
+    }
     const unsigned char c = static_cast<unsigned char>(text[i]);
     if (c >= 0x80) {
       // Programs are often not UTF-8 (Latin-1 comments): such bytes become U+FFFD, so that the

@@ -21,10 +21,13 @@ public:
   JsonWriter& operator=(const JsonWriter&) = delete;
 
   void begin_object();
+  // An object written on one line, whatever it holds: one per element keeps a long array (the
+  // blocks of a million-line program) readable line by line and a third of the size.
+  void begin_object_on_one_line();
   void end_object();
   void begin_array();
   void end_array();
-  // The key of the next value, inside an object.
+  // The key of the next value, inside an object: a name of plain ASCII, written unescaped.
   JsonWriter& key(std::string_view name);
   void value(double number);
   void value(float number);
@@ -57,8 +60,10 @@ private:
   struct Level {
     bool array = false;
     bool empty = true;
+    bool one_line = false;
   };
   std::vector<Level> levels_;
+  int one_line_levels_ = 0; // open levels written on one line (newlines off inside them)
   bool after_key_ = false;
 };
 

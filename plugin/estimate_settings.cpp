@@ -130,6 +130,11 @@ std::optional<EstimateSettings> completed(EstimateSettings s, const std::string&
       std::getline(in, line);
       while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
         line.pop_back();
+      std::size_t indent = 0;
+      while (indent < line.size() && std::isspace(static_cast<unsigned char>(line[indent])))
+        ++indent;
+      line.erase(0, indent);
+      s.program_stock_origin = {file, 1, int(indent) + 1};
       if (line.empty()) {
         std::cerr << "ncjoule: " << file << " is empty: give one stock (box:... or an STL file)\n";
         return std::nullopt;
@@ -140,6 +145,7 @@ std::optional<EstimateSettings> completed(EstimateSettings s, const std::string&
     }
   }
   s.config_stock = config->stock;
+  s.config_stock_origin = config->stock_origin;
   s.config_material = config->material;
   return s;
 }
@@ -186,21 +192,27 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   if (!s.material.empty()) options.material = s.material;
   if (options.material.empty()) options.material = s.config_material;
   // Stock: --stock, the job file's, PROGRAM.stock, the user config's.
-  for (const std::string* text : {&s.stock, &s.program_stock, &s.config_stock}) {
+  const TextOrigin stock_option{"--stock '" + s.stock + "'"};
+  const std::pair<const std::string*, const TextOrigin*> stocks[] = {
+      {&s.stock, &stock_option},
+      {&s.program_stock, &s.program_stock_origin},
+      {&s.config_stock, &s.config_stock_origin}};
+  for (const auto& [text, origin] : stocks) {
     if (text->empty() || (text != &s.stock && options.stock)) continue;
-    std::string error;
-    options.stock = parse_stock_spec(*text, &error);
+    std::vector<Diagnostic> problems;
+    options.stock = parse_stock_spec(*text, &problems, *origin);
     if (!options.stock) {
-      std::cerr << "ncjoule: bad stock '" << *text << "': " << error << '\n';
-      return exit_code = kUsage, std::nullopt;
+      print_diagnostics(problems);
+      // A file's stock is an input problem; the option's a usage one.
+      return exit_code = text == &s.stock ? kUsage : kInputError, std::nullopt;
     }
     break;
   }
   for (const std::string& text : s.tools) {
-    std::string error;
-    const auto tool = parse_tool_spec(text, &error);
+    std::vector<Diagnostic> problems;
+    const auto tool = parse_tool_spec(text, &problems, TextOrigin{"--tool '" + text + "'"});
     if (!tool) {
-      std::cerr << "ncjoule: bad --tool '" << text << "': " << error << '\n';
+      print_diagnostics(problems);
       return exit_code = kUsage, std::nullopt;
     }
     options.tools[tool->number] = *tool;

@@ -28,6 +28,7 @@ struct EstimateSettings {
   std::optional<double> co2_kg_per_kwh, price_per_kwh;
   // Filled in by estimate_options from the program's .stock file and the user config.
   std::string program_stock, config_stock, config_material;
+  TextOrigin program_stock_origin, config_stock_origin; // where those two stocks are written
 };
 
 // Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --engine,

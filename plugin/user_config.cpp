@@ -94,8 +94,11 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
     }
     std::string value = *node.value<std::string>();
     if (key->is_path) value = relative_to(path, value);
-    if (key->field == &UserConfig::stock && value.rfind("box:", 0) != 0)
-      value = relative_to(path, value); // an STL file
+    if (key->field == &UserConfig::stock) {
+      // The value's first character is just after the opening quote.
+      config.stock_origin = {path, int(where.line), int(where.column) + 1};
+      if (value.rfind("box:", 0) != 0) value = relative_to(path, value); // an STL file
+    }
     if (key->field == &UserConfig::tool_units && value != "mm" && value != "inch") {
       diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
                              "tool_units: must be \"mm\" or \"inch\""});

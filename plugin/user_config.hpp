@@ -25,6 +25,7 @@ namespace ncjoule::cli {
 struct UserConfig {
   std::string path; // the file read; empty when there is none
   std::string machine, material, tool_table, tool_units, stock, dialect;
+  TextOrigin stock_origin; // where `stock` is written, for its diagnostics
 };
 
 // Where the user config is looked for (whether or not it exists).

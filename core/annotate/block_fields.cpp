@@ -14,13 +14,16 @@ BlockFields compact_block_fields() {
   return f;
 }
 
-std::optional<BlockFields> parse_block_fields(std::string_view list, std::string* error) {
+std::optional<BlockFields> parse_block_fields(std::string_view list,
+                                              std::vector<Diagnostic>& diagnostics,
+                                              const TextOrigin& origin) {
   BlockFields f;
   f.time = f.energy = f.power = f.mrr = f.cumulative = f.operation = false;
   bool any = false;
   std::size_t begin = 0;
   while (begin <= list.size()) {
     const std::size_t end = std::min(list.find(',', begin), list.size());
+    const std::size_t at = begin;
     std::string name;
     for (char c : list.substr(begin, end - begin))
       if (!std::isspace(static_cast<unsigned char>(c)))
@@ -35,13 +38,14 @@ std::optional<BlockFields> parse_block_fields(std::string_view list, std::string
                   : name == "OP"  ? &f.operation
                                   : nullptr;
     if (!field) {
-      if (error) *error = "'" + name + "' is not a field: give some of T, E, P, MRR, CUM, OP";
+      diagnostics.push_back(
+          origin.at(at, "'" + name + "' is not a field: give some of T, E, P, MRR, CUM, OP"));
       return std::nullopt;
     }
     *field = any = true;
   }
   if (!any) {
-    if (error) *error = "no field given: give some of T, E, P, MRR, CUM, OP";
+    diagnostics.push_back(origin.at(0, "no field given: give some of T, E, P, MRR, CUM, OP"));
     return std::nullopt;
   }
   return f;

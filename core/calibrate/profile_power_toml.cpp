@@ -137,18 +137,21 @@ std::string power_section_toml(const PowerConstants& k,
   return power_section_toml(k, notes, source, KeptPowerKeys{});
 }
 
-std::optional<std::string> profile_with_power(std::string_view base_toml, const std::string& name,
+std::optional<std::string> profile_with_power(std::string_view base_toml,
+                                              const std::string& base_path,
+                                              const std::string& name,
                                               const PowerConstants& constants,
                                               const std::map<PowerParameter, std::string>& notes,
-                                              const std::string& power_source, std::string& error) {
+                                              const std::string& power_source,
+                                              std::vector<Diagnostic>& diagnostics) {
   toml::table root;
   if (!base_toml.empty()) {
     try {
-      root = toml::parse(base_toml);
+      root = toml::parse(base_toml, base_path);
     } catch (const toml::parse_error& e) {
-      std::ostringstream where;
-      where << e.source().begin.line << ":" << e.source().begin.column << ": " << e.description();
-      error = where.str();
+      diagnostics.push_back({Severity::Error, base_path, int(e.source().begin.line),
+                             int(e.source().begin.column),
+                             "not valid TOML: " + std::string(e.description())});
       return std::nullopt;
     }
   }

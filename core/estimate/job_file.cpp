@@ -26,6 +26,13 @@ struct JobReader {
   void error(const toml::node* node, const std::string& key, const std::string& what) {
     say(Severity::Error, node, key, what);
   }
+  // Diagnostics a reader of one value made, already placed.
+  void add(const std::vector<Diagnostic>& made) {
+    for (const Diagnostic& d : made) {
+      diagnostics.push_back(d);
+      if (d.severity == Severity::Error) failed = true;
+    }
+  }
 
   // A path from the job file, relative to the job file's folder.
   std::string resolve(const std::string& relative) const {
@@ -130,14 +137,21 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
   if (stock && stock_stl) {
     reader.error(stock_stl, "stock_stl", "give either stock or stock_stl, not both");
   } else if (stock) {
-    std::string error;
     if (!stock->is_string()) {
       reader.error(stock, "stock", "must be a string such as \"box:0,0,-20,100,60,0\"");
-    } else if (auto spec = parse_stock_spec(*stock->value<std::string>(), &error)) {
-      if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = reader.resolve(spec->stl_path);
-      job.stock = spec;
     } else {
-      reader.error(stock, "stock", error);
+      // The value's first character is just after the opening quote.
+      const TextOrigin origin{reader.path, int(stock->source().begin.line),
+                              int(stock->source().begin.column) + 1};
+      std::vector<Diagnostic> problems;
+      if (auto spec = parse_stock_spec(*stock->value<std::string>(), &problems, origin)) {
+        if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = reader.resolve(spec->stl_path);
+        job.stock = spec;
+      } else {
+        for (Diagnostic& d : problems)
+          d.message = "stock: " + d.message;
+        reader.add(problems);
+      }
     }
   } else if (stock_stl) {
     if (!stock_stl->is_string() || stock_stl->value<std::string>()->empty()) {

@@ -24,10 +24,17 @@ SourceFile make_source(std::string path, std::string text) {
   return file;
 }
 
+Diagnostic TextOrigin::at(std::size_t offset, std::string message, Severity severity) const {
+  const int column_there = column > 0 && line > 0 ? column + int(offset) : 0;
+  return {severity, file, line, column_there, std::move(message)};
+}
+
 std::string format_diagnostic(const Diagnostic& d) {
   std::string out = d.file;
-  out += ':' + std::to_string(d.line);
-  if (d.column > 0) out += ':' + std::to_string(d.column);
+  if (d.line > 0) {
+    out += ':' + std::to_string(d.line);
+    if (d.column > 0) out += ':' + std::to_string(d.column);
+  }
   switch (d.severity) {
   case Severity::Note:
     out += ": note: ";

@@ -74,9 +74,12 @@ std::optional<Tool> make_tool(const ToolFields& f, std::string* error) {
   return tool;
 }
 
-std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error) {
-  auto fail = [&](std::string message) -> std::optional<Tool> {
-    if (error) *error = std::move(message);
+std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnostic>* diagnostics,
+                                    const TextOrigin& origin) {
+  // A problem with the field at `field` (a view into `text`), or with the whole text.
+  auto fail = [&](std::string message, std::string_view field = {}) -> std::optional<Tool> {
+    const std::size_t offset = field.data() ? std::size_t(field.data() - text.data()) : 0;
+    if (diagnostics) diagnostics->push_back(origin.at(offset, std::move(message)));
     return std::nullopt;
   };
   const std::vector<std::string_view> f = split(text, ':');
@@ -85,40 +88,45 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error) {
   ToolFields fields;
   double number = 0;
   if (!parse_number(f[0], number) || number < 0 || number != std::floor(number) || number > 1e6)
-    return fail("tool number '" + std::string(f[0]) + "' is not a whole number");
+    return fail("tool number '" + std::string(f[0]) + "' is not a whole number", f[0]);
   fields.number = int(number);
   fields.type = std::string(f[1]);
   const auto shape = tool_shape_from_name(f[1]);
   if (!shape)
     return fail("tool type '" + std::string(f[1]) +
-                "' is not one of flat, ball, bullnose, drill, chamfer");
+                    "' is not one of flat, ball, bullnose, drill, chamfer",
+                f[1]);
   double v[4] = {0, 0, 0, 0};
   for (std::size_t k = 2; k < f.size(); ++k)
     if (k - 2 >= 4 || !parse_number(f[k], v[k - 2]))
-      return fail("tool value '" + std::string(f[k]) + "' is not a number");
+      return fail("tool value '" + std::string(f[k]) + "' is not a number", f[k]);
   const std::size_t extras = f.size() - 3;
   fields.diameter_mm = v[0];
   switch (*shape) {
   case ToolShape::FlatEndMill:
   case ToolShape::BallEndMill:
-    if (extras > 0) return fail("a flat or ball end mill takes only a diameter");
+    if (extras > 0) return fail("a flat or ball end mill takes only a diameter", f[3]);
     break;
   case ToolShape::BullNose:
     if (extras != 1) return fail("a bull nose is N:bullnose:DIAMETER:CORNER_RADIUS");
     fields.corner_radius_mm = v[1];
     break;
   case ToolShape::Drill:
-    if (extras > 1) return fail("a drill is N:drill:DIAMETER[:POINT_ANGLE]");
+    if (extras > 1) return fail("a drill is N:drill:DIAMETER[:POINT_ANGLE]", f[4]);
     if (extras) fields.point_angle_deg = v[1];
     break;
   case ToolShape::Chamfer:
-    if (extras > 2) return fail("a chamfer mill is N:chamfer:DIAMETER[:ANGLE[:TIP_DIAMETER]]");
+    if (extras > 2) return fail("a chamfer mill is N:chamfer:DIAMETER[:ANGLE[:TIP_DIAMETER]]", f[5]);
     if (extras) fields.point_angle_deg = v[1];
     if (extras > 1) fields.tip_diameter_mm = v[2];
     break;
   }
   fields.description = std::string(text);
-  return make_tool(fields, error);
+  std::string problem;
+  std::optional<Tool> tool = make_tool(fields, &problem);
+  // The sizes: about the diameter, or the sizes together.
+  if (!tool) return fail(problem, f[2]);
+  return tool;
 }
 
 } // namespace ncjoule

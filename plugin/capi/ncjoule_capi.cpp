@@ -116,9 +116,10 @@ int ncjoule_context_set_stock(ncjoule_context* context, const char* stock) {
     context->options.stock.reset();
     return 0;
   }
-  std::string error;
-  auto spec = ncjoule::parse_stock_spec(stock, &error);
-  if (!spec) return fail(std::string("bad stock '") + stock + "': " + error), -1;
+  std::vector<ncjoule::Diagnostic> problems;
+  auto spec =
+      ncjoule::parse_stock_spec(stock, &problems, {std::string("stock '") + stock + "'"});
+  if (!spec) return fail(ncjoule::format_diagnostic(problems.front())), -1;
   context->options.stock = *spec;
   return 0;
 }
@@ -152,9 +153,10 @@ void ncjoule_context_set_progress(ncjoule_context* context, ncjoule_progress_cal
 
 int ncjoule_context_add_tool(ncjoule_context* context, const char* tool) {
   if (!context || !tool) return fail("no context or no tool"), -1;
-  std::string error;
-  const auto parsed = ncjoule::parse_tool_spec(tool, &error);
-  if (!parsed) return fail(std::string("bad tool '") + tool + "': " + error), -1;
+  std::vector<ncjoule::Diagnostic> problems;
+  const auto parsed =
+      ncjoule::parse_tool_spec(tool, &problems, {std::string("tool '") + tool + "'"});
+  if (!parsed) return fail(ncjoule::format_diagnostic(problems.front())), -1;
   context->options.tools[parsed->number] = *parsed;
   return 0;
 }
@@ -169,9 +171,10 @@ int ncjoule_context_set_default_tool(ncjoule_context* context, const char* tool)
     context->options.default_tool.reset();
     return 0;
   }
-  std::string error;
-  const auto parsed = ncjoule::parse_tool_spec(std::string("0:") + tool, &error);
-  if (!parsed) return fail(std::string("bad default tool '") + tool + "': " + error), -1;
+  std::vector<ncjoule::Diagnostic> problems;
+  const auto parsed = ncjoule::parse_tool_spec(std::string("0:") + tool, &problems,
+                                               {std::string("default tool '") + tool + "'"});
+  if (!parsed) return fail(ncjoule::format_diagnostic(problems.front())), -1;
   context->options.default_tool = *parsed;
   return 0;
 }

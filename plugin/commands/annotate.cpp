@@ -54,10 +54,11 @@ int run_annotate(const AnnotateCliOptions& o) {
   annotate_options.header = !o.no_header;
   if (o.compact) annotate_options.fields = compact_block_fields();
   if (!o.fields.empty()) {
-    std::string error;
-    const auto fields = parse_block_fields(o.fields, &error);
+    std::vector<Diagnostic> problems;
+    const auto fields =
+        parse_block_fields(o.fields, problems, TextOrigin{"--fields '" + o.fields + "'"});
     if (!fields) {
-      std::cerr << "ncjoule: bad --fields: " << error << '\n';
+      print_diagnostics(problems);
       return kUsage;
     }
     annotate_options.fields = *fields;

@@ -134,10 +134,10 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
     if (!options.dialect) return kUsage;
   }
   if (!o.stock.empty()) {
-    std::string error;
-    options.stock = parse_stock_spec(o.stock, &error);
+    std::vector<Diagnostic> problems;
+    options.stock = parse_stock_spec(o.stock, &problems, TextOrigin{"--stock '" + o.stock + "'"});
     if (!options.stock) {
-      std::fprintf(stderr, "bad --stock '%s': %s\n", o.stock.c_str(), error.c_str());
+      print_diagnostics(problems);
       return kUsage;
     }
   }
@@ -282,16 +282,17 @@ int run_calibrate(const CalibrateCliOptions& o) {
                          "--cut-x/y/z, --zhou, --log (see --help)\n");
     return kUsage;
   }
-  std::string error;
   const std::string name =
       !o.name.empty() ? o.name : std::filesystem::path(o.output).stem().string();
   std::string source = "ncjoule calibrate:";
   for (std::size_t i = 0; i < calibration.fitted_files.size(); ++i)
     source += (i ? "; " : " ") + calibration.fitted_files[i];
   if (!o.machine.empty()) source += "; other constants from " + o.machine;
-  auto text = profile_with_power(base_text, name, constants, calibration.notes, source, error);
+  std::vector<Diagnostic> problems;
+  auto text = profile_with_power(base_text, o.machine, name, constants, calibration.notes, source,
+                                 problems);
   if (!text) {
-    std::fprintf(stderr, "%s: %s\n", o.machine.c_str(), error.c_str());
+    print_diagnostics(problems);
     return kInputError;
   }
   if (const int status = write_profile(o.output, *text); status != kOk) return status;

@@ -119,6 +119,19 @@ try:
     r = run("estimate", part, config=bad)
     check(r.returncode == 2 and "bad.toml:2:" in r.stderr and "tool_units" in r.stderr,
           f"a bad config is refused with its line ({r.stderr[-200:]!r})")
+    # A bad stock in the config or in PROGRAM.stock: the file, line and column of the bad number.
+    bad_stock = write(os.path.join(work, "bad-stock.toml"), '# shop\nstock = "box:0,0,a,1,1,1"\n')
+    lone = write(os.path.join(work, "lone.nc"), PROGRAM)
+    r = run("estimate", lone, config=bad_stock)
+    check(r.returncode == 2 and "bad-stock.toml:2:18: error: stock box value 'a'" in r.stderr,
+          f"a bad stock in the config is placed at its value ({r.stderr[-200:]!r})")
+    write(os.path.join(work, "lone.stock"), "  box:0,0,0,1,1,x\n")
+    r = run("estimate", lone, config=config)
+    check(r.returncode == 2 and "lone.stock:1:17: error: stock box value 'x'" in r.stderr,
+          f"a bad PROGRAM.stock is placed at its value ({r.stderr[-200:]!r})")
+    r = run("estimate", lone, "--stock", "box:1,2", "--tool", "1:flat:6", config=config)
+    check(r.returncode == 1 and "--stock 'box:1,2': error: stock box needs six numbers" in r.stderr,
+          f"a bad --stock is named by the option ({r.stderr[-200:]!r})")
     unknown = write(os.path.join(work, "unknown.toml"), 'machin = "x.toml"\n')
     r = run("estimate", part, "--json", config=unknown)
     check(r.returncode == 0 and "machin: unknown key" in r.stderr, "an unknown key is a warning")

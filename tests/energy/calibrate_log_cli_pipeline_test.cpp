@@ -95,8 +95,7 @@ TEST_CASE("calibrate --log fits a shifted, noisy log of the bracket program back
 
   // The program on the model, with the stock calibrate is told about.
   EstimateOptions options;
-  std::string error;
-  options.stock = parse_stock_spec(kStock, &error);
+  options.stock = parse_stock_spec(kStock);
   REQUIRE(options.stock);
   options.keep_trace = true;
   std::ifstream in(kProgram, std::ios::binary);

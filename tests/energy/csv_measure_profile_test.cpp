@@ -108,10 +108,10 @@ TEST_CASE("a profile written with fitted constants loads back through the profil
   k.co2_kg_per_kwh = 0.42;
   k.price_per_kwh = 0.19;
   k.currency = "USD";
-  std::string error;
-  const auto text = profile_with_power(base.str(), "fitted", k,
+  std::vector<Diagnostic> problems;
+  const auto text = profile_with_power(base.str(), "base.toml", "fitted", k,
                                        {{PowerParameter::SpindleKA, "fit of spindle.csv"}},
-                                       "ncjoule calibrate: spindle.csv", error);
+                                       "ncjoule calibrate: spindle.csv", problems);
   REQUIRE(text);
   CHECK(text->find("fit of spindle.csv") != std::string::npos);
   const MachineProfile back = parse_profile(*text, "fitted.toml");
@@ -158,9 +158,10 @@ TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitti
   CHECK(k.zhou.fitted_rpm_max == 6000);
   CHECK(k.zhou.fitted_mrr_max_mm3_s == 40);
 
-  std::string error;
+  std::vector<Diagnostic> problems;
   // A refit of the Pavanaskar terms only: the material term stays.
-  const auto kept = profile_with_power(text, "fitted", original.power, {}, "spindle.csv", error);
+  const auto kept =
+      profile_with_power(text, "base.toml", "fitted", original.power, {}, "spindle.csv", problems);
   REQUIRE(kept);
   const MachineProfile same = parse_profile(*kept, "fitted.toml");
   CHECK(same.power.cutting_term == CuttingTerm::Material);
@@ -169,7 +170,8 @@ TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitti
 
   // A Zhou fit: its cutting term is what cuts from now on, the other keys stay.
   k.cutting_term = CuttingTerm::Fitted;
-  const auto written = profile_with_power(text, "fitted", k, {}, "ncjoule calibrate: z.csv", error);
+  const auto written =
+      profile_with_power(text, "base.toml", "fitted", k, {}, "ncjoule calibrate: z.csv", problems);
   REQUIRE(written);
   const MachineProfile back = parse_profile(*written, "fitted.toml");
   CHECK(back.power.cutting_term == CuttingTerm::Fitted);
@@ -181,4 +183,16 @@ TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitti
   CHECK(back.power.zhou.c3 == doctest::Approx(1.25e-6));
   CHECK(back.power.zhou.fitted_rpm_min == doctest::Approx(1000));
   CHECK(back.power.zhou.fitted_mrr_max_mm3_s == doctest::Approx(40));
+}
+
+TEST_CASE("a base profile that is not TOML is reported at its line and column") {
+  std::vector<Diagnostic> problems;
+  const auto text = profile_with_power("name = \"mill\"\nrapid = [1, 2\n", "mill.toml", "fitted",
+                                       PowerConstants{}, {}, "x.csv", problems);
+  CHECK_FALSE(text);
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].file == "mill.toml");
+  CHECK(problems[0].line == 2);
+  CHECK(problems[0].column > 0);
+  CHECK(problems[0].message.rfind("not valid TOML", 0) == 0);
 }

@@ -27,7 +27,7 @@ void require(bool condition) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   ncjoule::EstimateOptions options;
-  options.stock = ncjoule::parse_stock_spec("box:0,0,-5,20,20,0", nullptr);
+  options.stock = ncjoule::parse_stock_spec("box:0,0,-5,20,20,0");
   options.removal.grid_mm = 2; // coarse: each sample is cheap, the code paths the same
   options.limits.max_commands = 500;
   options.limits.max_loop_iterations = 200;

@@ -21,8 +21,8 @@ void write_file(const std::string& path, const std::string& bytes) {
 } // namespace
 
 TEST_CASE("stock specifications") {
-  std::string error;
-  auto box = parse_stock_spec("box:-10,-5,-20,100,50.5,0", &error);
+  std::vector<Diagnostic> problems;
+  auto box = parse_stock_spec("box:-10,-5,-20,100,50.5,0", &problems);
   REQUIRE(box);
   CHECK(box->kind == StockSpec::Kind::Box);
   CHECK(box->box.xmin == -10);
@@ -33,11 +33,33 @@ TEST_CASE("stock specifications") {
   CHECK(stl->kind == StockSpec::Kind::Stl);
   CHECK(stl->stl_path == "parts/Blank.STL");
   CHECK(parse_stock_spec("")->kind == StockSpec::Kind::Default);
-  CHECK_FALSE(parse_stock_spec("box:1,2,3", &error));
-  CHECK(error.find("six numbers") != std::string::npos);
-  CHECK_FALSE(parse_stock_spec("box:0,0,0,1,1,x", &error));
-  CHECK_FALSE(parse_stock_spec("box:0,0,0,-1,1,1", &error));
-  CHECK_FALSE(parse_stock_spec("cube", &error));
+  CHECK(problems.empty());
+  CHECK_FALSE(parse_stock_spec("box:1,2,3", &problems));
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].message.find("six numbers") != std::string::npos);
+  CHECK_FALSE(parse_stock_spec("box:0,0,0,-1,1,1", &problems));
+  CHECK_FALSE(parse_stock_spec("cube", &problems));
+  CHECK(problems.size() == 3);
+  for (const Diagnostic& d : problems)
+    CHECK(d.severity == Severity::Error);
+}
+
+TEST_CASE("a stock written in a file is reported at the line and column of the bad number") {
+  // `stock = "box:0,0,0,1,1,x"` in a config file: the value starts at column 10 of line 3.
+  std::vector<Diagnostic> problems;
+  CHECK_FALSE(parse_stock_spec("box:0,0,0,1,1,x", &problems, {"config.toml", 3, 10}));
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].file == "config.toml");
+  CHECK(problems[0].line == 3);
+  CHECK(problems[0].column == 10 + 14); // the 'x'
+  CHECK(format_diagnostic(problems[0]) ==
+        "config.toml:3:24: error: stock box value 'x' is not a number");
+  // From the command line: named by the option, no line.
+  problems.clear();
+  CHECK_FALSE(parse_stock_spec("cube", &problems, {"--stock 'cube'"}));
+  REQUIRE(problems.size() == 1);
+  CHECK(format_diagnostic(problems[0]).rfind("--stock 'cube': error: stock 'cube' is neither", 0) ==
+        0);
 }
 
 TEST_CASE("STL stock, binary and ASCII") {

@@ -36,14 +36,24 @@ TEST_CASE("tool specs: mistakes are refused with a reason") {
   for (const char* bad :
        {"1:flat", "x:flat:6", "1.5:flat:6", "1:square:6", "1:flat:six", "1:flat:0", "1:flat:6:2",
         "3:bullnose:10", "3:bullnose:10:6", "4:drill:6:200", "-1:flat:6"}) {
-    std::string error;
+    std::vector<Diagnostic> problems;
     CAPTURE(bad);
-    CHECK_FALSE(parse_tool_spec(bad, &error));
-    CHECK_FALSE(error.empty());
+    CHECK_FALSE(parse_tool_spec(bad, &problems));
+    REQUIRE(problems.size() == 1);
+    CHECK(problems[0].severity == Severity::Error);
+    CHECK_FALSE(problems[0].message.empty());
   }
-  std::string error;
-  parse_tool_spec("1:square:6", &error);
-  CHECK(error.find("square") != std::string::npos);
+  // The error points at the field it is about.
+  std::vector<Diagnostic> problems;
+  parse_tool_spec("1:square:6", &problems, {"job.toml", 7, 12});
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].message.find("square") != std::string::npos);
+  CHECK(problems[0].line == 7);
+  CHECK(problems[0].column == 12 + 2);
+  problems.clear();
+  parse_tool_spec("1:flat:0", &problems, {"job.toml", 7, 12});
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].column == 12 + 7); // the diameter
   CHECK(tool_shape_from_name("Chamfer") == ToolShape::Chamfer);
   CHECK_FALSE(tool_shape_from_name("vee"));
 }

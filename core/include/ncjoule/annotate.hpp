@@ -34,9 +34,11 @@ struct BlockFields {
 // The compact style: T, E, MRR and OP, zeros left out: about 60% of the bytes the default adds
 // (docs/annotation.md gives the sizes).
 BlockFields compact_block_fields();
-// "T,E,MRR" (any case, any order) -> those fields; std::nullopt, with `error` set, for a name
-// that is not one of T, E, P, MRR, CUM, OP or an empty list.
-std::optional<BlockFields> parse_block_fields(std::string_view list, std::string* error);
+// "T,E,MRR" (any case, any order) -> those fields; std::nullopt, with an error in `diagnostics`,
+// for a name that is not one of T, E, P, MRR, CUM, OP or an empty list.
+std::optional<BlockFields> parse_block_fields(std::string_view list,
+                                              std::vector<Diagnostic>& diagnostics,
+                                              const TextOrigin& origin);
 
 struct AnnotateOptions {
   bool header = true;              // the summary header after the % and O-number lines

@@ -172,11 +172,15 @@ MeasuredEnergy measure_energy(const PowerLog& log, const MeasureOptions& options
 std::string power_section_toml(const PowerConstants& constants,
                                const std::map<PowerParameter, std::string>& notes = {},
                                const std::string& source = "");
-// A whole profile: the base profile's other tables (TOML text), `name` when not empty, and the
-// [power] section of `constants`. nullopt with `error` set when the base does not parse.
-std::optional<std::string> profile_with_power(std::string_view base_toml, const std::string& name,
+// A whole profile: the base profile's other tables (TOML text read from `base_path`), `name`
+// when not empty, and the [power] section of `constants`. nullopt, with an error at the line and
+// column in `diagnostics`, when the base does not parse.
+std::optional<std::string> profile_with_power(std::string_view base_toml,
+                                              const std::string& base_path,
+                                              const std::string& name,
                                               const PowerConstants& constants,
                                               const std::map<PowerParameter, std::string>& notes,
-                                              const std::string& power_source, std::string& error);
+                                              const std::string& power_source,
+                                              std::vector<Diagnostic>& diagnostics);
 
 } // namespace ncjoule

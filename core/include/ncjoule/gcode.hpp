@@ -20,6 +20,8 @@
 #include <string_view>
 #include <vector>
 
+#include "ncjoule/diagnostic.hpp"
+
 namespace ncjoule {
 
 // ---------------------------------------------------------------------------------------------
@@ -63,23 +65,6 @@ struct LineComments {
 };
 struct Dialect;
 LineComments line_comments(std::string_view line, const Dialect& dialect);
-
-// ---------------------------------------------------------------------------------------------
-// Diagnostics
-// ---------------------------------------------------------------------------------------------
-
-enum class Severity { Note, Warning, Error };
-
-struct Diagnostic {
-  Severity severity = Severity::Error;
-  std::string file;
-  int line = 0;   // 1-based
-  int column = 0; // 1-based, 0 when the whole line is meant
-  std::string message;
-};
-
-// "file:line:column: error: message"
-std::string format_diagnostic(const Diagnostic& d);
 
 // ---------------------------------------------------------------------------------------------
 // Dialects: how a controller family writes G-code, as data.

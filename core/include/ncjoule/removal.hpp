@@ -114,8 +114,11 @@ struct StockSpec {
 };
 
 // "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm), a path ending in .stl (any case), or "" / "auto"
-// for the default. Returns std::nullopt with *error set when the text is not understood.
-std::optional<StockSpec> parse_stock_spec(std::string_view text, std::string* error = nullptr);
+// for the default. Returns std::nullopt, with an error in `diagnostics` placed within `origin`,
+// when the text is not understood.
+std::optional<StockSpec> parse_stock_spec(std::string_view text,
+                                          std::vector<Diagnostic>* diagnostics = nullptr,
+                                          const TextOrigin& origin = {});
 
 // The default stock: the bounding box of the cutting moves (Feed, Arc), extended in X and Y by
 // the radius of the tool making each move. Moves whose tool is unknown are left out.

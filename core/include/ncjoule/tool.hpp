@@ -8,6 +8,9 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
+
+#include "ncjoule/diagnostic.hpp"
 
 namespace ncjoule {
 
@@ -58,8 +61,11 @@ std::optional<ToolShape> tool_shape_from_name(std::string_view name);
 // A tool written as "N:TYPE:DIAMETER[:EXTRA[:EXTRA]]" (mm and degrees), as on the command line:
 //   1:flat:6   2:ball:6   3:bullnose:10:1.5 (corner radius)   4:drill:6.8:118 (point angle,
 //   118 when left out)   5:chamfer:12:90:0.5 (included angle, 90 when left out; tip flat).
-// Returns std::nullopt with *error set when the text is not understood or the tool is unusable.
-std::optional<Tool> parse_tool_spec(std::string_view text, std::string* error = nullptr);
+// Returns std::nullopt, with an error in `diagnostics` placed at the field it concerns within
+// `origin`, when the text is not understood or the tool is unusable.
+std::optional<Tool> parse_tool_spec(std::string_view text,
+                                    std::vector<Diagnostic>* diagnostics = nullptr,
+                                    const TextOrigin& origin = {});
 
 // A tool as the table of a job file or a machine profile writes it: the type name and sizes in mm
 // and degrees; what is left out takes the type's default (a ball end mill's corner radius is
@@ -74,7 +80,7 @@ struct ToolFields {
   std::string description;
 };
 // Returns std::nullopt with *error set (naming the field) when the type is unknown or the sizes
-// are unusable.
+// are unusable: a check for readers, which place the message in their own diagnostics.
 std::optional<Tool> make_tool(const ToolFields& fields, std::string* error = nullptr);
 
 } // namespace ncjoule

@@ -49,7 +49,7 @@ for target in "${targets[@]}"; do
     lexer) max_len=4096 ;;
     profile) max_len=2048 ;;
     interpreter) max_len=1024 ;;
-    *) max_len=512 timeout=60 ;;
+    *) max_len=384 timeout=60 ;;
   esac
   limit=(-max_total_time="$seconds")
   [ -n "${RUNS:-}" ] && limit=(-runs="$RUNS")

@@ -138,8 +138,7 @@ std::string power_section_toml(const PowerConstants& k,
 }
 
 std::optional<std::string> profile_with_power(std::string_view base_toml,
-                                              const std::string& base_path,
-                                              const std::string& name,
+                                              const std::string& base_path, const std::string& name,
                                               const PowerConstants& constants,
                                               const std::map<PowerParameter, std::string>& notes,
                                               const std::string& power_source,

@@ -33,8 +33,7 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text,
                                           std::vector<Diagnostic>* diagnostics,
                                           const TextOrigin& origin) {
   // A problem with the part of `text` at `where`, or with the whole text.
-  auto fail = [&](std::string message,
-                  std::string_view where = {}) -> std::optional<StockSpec> {
+  auto fail = [&](std::string message, std::string_view where = {}) -> std::optional<StockSpec> {
     const std::size_t offset = where.data() ? std::size_t(where.data() - text.data()) : 0;
     if (diagnostics) diagnostics->push_back(origin.at(offset, std::move(message)));
     return std::nullopt;
@@ -48,8 +47,7 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text,
     for (int k = 0; k < 6; ++k) {
       const std::size_t comma = rest.find(',');
       if ((k < 5) != (comma != std::string_view::npos))
-        return fail("stock box needs six numbers: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm)",
-                    rest);
+        return fail("stock box needs six numbers: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm)", rest);
       const std::string_view field = rest.substr(0, comma);
       if (!parse_number(field, v[k]))
         return fail("stock box value '" + std::string(field) + "' is not a number", field);

@@ -116,7 +116,8 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
     if (extras) fields.point_angle_deg = v[1];
     break;
   case ToolShape::Chamfer:
-    if (extras > 2) return fail("a chamfer mill is N:chamfer:DIAMETER[:ANGLE[:TIP_DIAMETER]]", f[5]);
+    if (extras > 2)
+      return fail("a chamfer mill is N:chamfer:DIAMETER[:ANGLE[:TIP_DIAMETER]]", f[5]);
     if (extras) fields.point_angle_deg = v[1];
     if (extras > 1) fields.tip_diameter_mm = v[2];
     break;

@@ -117,8 +117,7 @@ int ncjoule_context_set_stock(ncjoule_context* context, const char* stock) {
     return 0;
   }
   std::vector<ncjoule::Diagnostic> problems;
-  auto spec =
-      ncjoule::parse_stock_spec(stock, &problems, {std::string("stock '") + stock + "'"});
+  auto spec = ncjoule::parse_stock_spec(stock, &problems, {std::string("stock '") + stock + "'"});
   if (!spec) return fail(ncjoule::format_diagnostic(problems.front())), -1;
   context->options.stock = *spec;
   return 0;

@@ -99,3 +99,16 @@ TEST_CASE("S-curve samples are consistent with their speeds") {
           jerk * dt * dt * dt / 12 + 1e-9);
   }
 }
+
+TEST_CASE("a move asks for more samples than allowed: they thin out, ends and order kept") {
+  PlanOptions o;
+  o.max_sample_step_mm = 0.01; // 100 m / 0.01 mm would be ten million samples
+  o.max_sample_dt_s = 0.001;
+  o.max_samples_per_move = 50;
+  const Timeline t = plan({feed(at(0, 0), at(100000, 0), 600)}, round_machine(), o);
+  const TimedCommand& c = t.commands[0];
+  check_ordered(c);
+  // 50 intervals in space, each with at most 50 / 50 = 1 in time: 51 samples.
+  CHECK(c.samples.size() <= 51);
+  CHECK(c.samples.back().position.x == doctest::Approx(100000));
+}

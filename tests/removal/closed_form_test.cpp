@@ -191,9 +191,8 @@ TEST_CASE("volume error against the grid spacing, from a 120th to a tenth of the
   }
   for (const Case& c : cases) {
     const double diameter = c.tools.begin()->second.diameter_mm;
-    for (const auto& [divisor, bound] :
-         std::vector<std::pair<double, double>>{{120, 2e-3}, {60, 4e-3}, {40, 6e-3},
-                                                {20, 1.2e-2}, {10, 5e-2}}) {
+    for (const auto& [divisor, bound] : std::vector<std::pair<double, double>>{
+             {120, 2e-3}, {60, 4e-3}, {40, 6e-3}, {20, 1.2e-2}, {10, 5e-2}}) {
       const double grid = diameter / divisor;
       const RemovalResult r = run(c.program, c.tools, c.stock, EngineKind::Dexel, grid);
       const double error = relative_error(r.removed_mm3, c.want);

@@ -57,8 +57,8 @@ TEST_CASE("dexel and voxel agree within 0.5% on every sample program") {
     stock_file.replace_extension(".stock");
     if (fs::exists(stock_file)) {
       std::vector<Diagnostic> problems;
-      options.stock = parse_stock_spec(trimmed(read_text(stock_file)), &problems,
-                                       {stock_file.string(), 1, 1});
+      options.stock =
+          parse_stock_spec(trimmed(read_text(stock_file)), &problems, {stock_file.string(), 1, 1});
       const std::string problem = problems.empty() ? "" : format_diagnostic(problems[0]);
       REQUIRE_MESSAGE(options.stock, problem);
       if (options.stock->kind == StockSpec::Kind::Stl)

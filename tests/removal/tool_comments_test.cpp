@@ -307,9 +307,10 @@ TEST_CASE("pcb2gcode: the cutter named in the message after its tool change") {
   REQUIRE(inch.count(1));
   CHECK(inch.at(1).diameter_mm == doctest::Approx(0.05906 * 25.4));
   CHECK(inch.at(1).shape == ToolShape::FlatEndMill);
-  const auto mm = read_tools("G21\nT3\nM5\nG04 P1\n(MSG, Change tool bit to mill diameter 0.15000mm)\n"
-                             "M0\n",
-                             diags);
+  const auto mm =
+      read_tools("G21\nT3\nM5\nG04 P1\n(MSG, Change tool bit to mill diameter 0.15000mm)\n"
+                 "M0\n",
+                 diags);
   REQUIRE(mm.count(3));
   CHECK(mm.at(3).diameter_mm == doctest::Approx(0.15));
   CHECK_FALSE(has_warning(diags));

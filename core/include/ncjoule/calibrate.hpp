@@ -176,8 +176,7 @@ std::string power_section_toml(const PowerConstants& constants,
 // when not empty, and the [power] section of `constants`. nullopt, with an error at the line and
 // column in `diagnostics`, when the base does not parse.
 std::optional<std::string> profile_with_power(std::string_view base_toml,
-                                              const std::string& base_path,
-                                              const std::string& name,
+                                              const std::string& base_path, const std::string& name,
                                               const PowerConstants& constants,
                                               const std::map<PowerParameter, std::string>& notes,
                                               const std::string& power_source,

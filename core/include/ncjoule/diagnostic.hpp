@@ -30,8 +30,7 @@ struct TextOrigin {
   int line = 0;
   int column = 0; // of the text's first character; 0: not known
   // An error `offset` characters into the text.
-  Diagnostic at(std::size_t offset, std::string message,
-                Severity severity = Severity::Error) const;
+  Diagnostic at(std::size_t offset, std::string message, Severity severity = Severity::Error) const;
 };
 
 } // namespace ncjoule

@@ -50,6 +50,8 @@ struct EstimateOptions {
   bool keep_trace = false;
   // Bounds on what the program may make the interpreter do (gcode.hpp).
   InterpreterLimits limits;
+  // Path samples of one move at most (PlanOptions::max_samples_per_move).
+  std::size_t max_samples_per_move = 100'000;
 };
 
 // A job file (TOML) says what a program is cut from and with:

@@ -42,6 +42,10 @@ struct PlanOptions {
   double max_sample_step_mm = 0;
   // Upper bound on the time between two samples (s); 0 = none.
   double max_sample_dt_s = 0;
+  // Samples of one move at most, whatever the steps ask: guards against a step so small, or a
+  // move so long (X1e100), that one move would fill memory. 100,000 samples (6 MB) cover a 5 m
+  // move at a 0.05 mm grid; beyond that they thin out.
+  std::size_t max_samples_per_move = 100'000;
   // Time nothing before the end of the program (the look-ahead sees it all at once). The result
   // is the same; tests compare the two.
   bool look_ahead_whole_program = false;

@@ -2,6 +2,7 @@
 // break/continue) and the subprogram calls of the Fanuc family (M98/M99, Haas M97, G65).
 #include "interpreter_impl.hpp"
 
+#include <charconv>
 #include <cmath>
 
 #include "codes.hpp"
@@ -301,11 +302,13 @@ std::optional<std::size_t> Interpreter::local_subprogram_line(long n_number) {
       std::string_view l = source_.line_text(i);
       std::size_t k = l.find_first_not_of(" \t/");
       if (k == std::string_view::npos || (l[k] != 'n' && l[k] != 'N')) continue;
+      const std::size_t first = ++k;
+      while (k < l.size() && std::isdigit(static_cast<unsigned char>(l[k])))
+        ++k;
+      // A number too long for a long is no call target (nothing can call it).
       long num = 0;
-      bool any = false;
-      for (++k; k < l.size() && std::isdigit(static_cast<unsigned char>(l[k])); ++k)
-        num = num * 10 + (l[k] - '0'), any = true;
-      if (any) n_numbers_->emplace(num, i);
+      const auto [end, ec] = std::from_chars(l.data() + first, l.data() + k, num);
+      if (k > first && ec == std::errc() && end == l.data() + k) n_numbers_->emplace(num, i);
     }
   }
   auto it = n_numbers_->find(n_number);

@@ -133,3 +133,15 @@ TEST_CASE("a program number too long for any number is no call target, and no cr
   CHECK(errors(p) == 0);
   CHECK(moves(p).size() == 1);
 }
+
+TEST_CASE("a block number too long for any number is no local subprogram, and no overflow") {
+  // Found by fuzzing: N followed by 30 digits overflowed while M97 looked for its target.
+  const Toolpath p =
+      run("O0200\nN" + std::string(30, '3') + " X1.4\nG21 G90\nM97 P2\nG0 X1\nM30\nN2 G0 Y5\nM99\n",
+          "haas");
+  CHECK(errors(p) == 0);
+  const auto m = move_commands(p);
+  REQUIRE(m.size() == 3); // the long N line's X1.4, N2's Y5 (called), then X1
+  CHECK(m[1].end.y == doctest::Approx(5));
+  CHECK(m[2].end.x == doctest::Approx(1));
+}

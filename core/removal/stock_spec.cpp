@@ -90,6 +90,7 @@ void StockExtent::add(const CanonCommand& cmd) {
       std::hypot(cmd.end.x - cmd.start.x, cmd.end.y - cmd.start.y) > kMinXyMm;
   if (travels_in_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
     t.top_level = std::max(t.top_level, cmd.start.z);
+  if (travels_in_xy) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
   if (levels_.size() < kMaxLevels) {
     levels_.push_back(cmd.start.z);
     levels_.push_back(cmd.end.z);
@@ -103,8 +104,9 @@ void StockExtent::add(const CanonCommand& cmd) {
 std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
   constexpr double inf = std::numeric_limits<double>::infinity();
   Box3 b{inf, inf, inf, -inf, -inf, -inf};
-  double top_level = -inf; // highest Z of a level move
-  double top_start = -inf; // highest Z a cutting move starts from (drilling-only programs)
+  double top_level = -inf;  // highest Z of a level move
+  double top_start = -inf;  // highest Z a cutting move starts from (drilling-only programs)
+  double top_travel = -inf; // highest Z of a cutting move that travels in XY (ramps, helices)
   bool any = false;
   for (const auto& [number, t] : tools_) {
     const auto tool = tools.find(number);
@@ -116,9 +118,13 @@ std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
     b.zmin = std::min(b.zmin, t.zmin);
     top_level = std::max(top_level, t.top_level);
     top_start = std::max(top_start, t.top_start);
+    top_travel = std::max(top_travel, t.top_travel);
   }
   if (!any) return std::nullopt;
   b.zmax = top_level > -inf ? top_level : top_start;
+  // Every level move at the bottom (a helix or ramp down to one depth, then the cut): the ramps
+  // start at the top of the stock.
+  if (!(b.zmax > b.zmin) && top_travel > b.zmin) b.zmax = top_travel;
   return b; // may have no height (every level move at one Z): the caller says so
 }
 

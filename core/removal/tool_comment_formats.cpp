@@ -187,6 +187,42 @@ std::optional<DescribedTool> read_keyed_tool(const std::string& upper, Descripti
   return sized_description(trim(m[2]), std::atoi(m[1].str().c_str()), true, units);
 }
 
+std::optional<DescribedTool> read_blendercam_tool(const std::string& upper,
+                                                  DescriptionUnits units) {
+  static const std::regex entry(R"(^\s*TOOL\s*:\s*D\s*=\s*)" NCJ_NUMBER
+                                R"(\s*(MM|''|"|IN)?\s*TYPE\s+([A-Z_]+)(?:\s+FLUTES\s+(\d+))?)");
+  std::smatch m;
+  if (!std::regex_search(upper, m, entry)) return std::nullopt;
+  DescribedTool d;
+  d.numbered = false;
+  const std::string unit = m[2];
+  const double mm_per_unit = unit == "MM" ? 1.0 : unit.empty() ? units.mm_per_unit() : 25.4;
+  d.tool.diameter_mm = number(m[1]) * mm_per_unit;
+  const std::string type = m[3];
+  if (m[4].matched) d.tool.flutes = std::atoi(m[4].str().c_str());
+  d.tool.description = "BlenderCAM " + type + " cutter";
+  // BlenderCAM's type names, in the words apply_shape knows.
+  static const std::pair<const char*, const char*> names[] = {
+      {"END", "END MILL"}, {"BALL", "BALL END MILL"},     {"BULLNOSE", "END MILL"},
+      {"VCARVE", "V-BIT"}, {"BALLCONE", "BALL END MILL"}, {"CYLCONE", "V-BIT"}};
+  std::string words = type;
+  for (const auto& [name, as] : names)
+    if (type == name) words = as;
+  apply_shape(d, words);
+  // The comment gives no corner radius or cone angle: the nearest shape, said.
+  const char* nearest = type == "BALLCONE"   ? "a ball end mill"
+                        : type == "CYLCONE"  ? "a 90-degree V-bit"
+                        : type == "BULLNOSE" ? "a flat end mill (no corner radius given)"
+                                             : nullptr;
+  if (nearest) {
+    Diagnostic remark;
+    remark.severity = Severity::Note;
+    remark.message = "a " + type + " cutter is simulated as " + nearest + " of its diameter";
+    d.remark = remark;
+  }
+  return d;
+}
+
 std::optional<DescribedTool> read_freecad_tool(const std::string& upper, DescriptionUnits units) {
   static const std::regex label(R"(^\s*TC\s*:\s*(.*?)\s*$)");
   std::smatch m;

@@ -54,6 +54,12 @@ std::optional<DescribedTool> read_numbered_list_tool(const std::string& upper,
 // MILL" is a description, not tool 1.
 std::optional<DescribedTool> read_keyed_tool(const std::string& upper, DescriptionUnits units);
 
+// BlenderCAM / Fabex: "TOOL: D = 3.0 MM  TYPE END FLUTES 2" (metric scenes) or
+// "TOOL: D = 0.125''  TYPE BALL FLUTES 2" (imperial), unnumbered, next to the tool change when
+// the post writes one. Types END, BALL, BULLNOSE, VCARVE; the cone types are read as the nearest
+// shape with a note.
+std::optional<DescribedTool> read_blendercam_tool(const std::string& upper, DescriptionUnits units);
+
 // FreeCAD: the tool controller's label, "TC: 6MM BALL END" (unnumbered).
 std::optional<DescribedTool> read_freecad_tool(const std::string& upper, DescriptionUnits units);
 

@@ -154,6 +154,19 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
         tools.add(*t, line, c.column, true);
         continue;
       }
+      if (upper.find("TYPE") != std::string::npos)
+        if (auto t = detail::read_blendercam_tool(upper, units)) {
+          // Numbered by the tool change next to it; a program that selects none cuts with it.
+          auto number = selected_after(context.selected_tools, line, kNameLinesAround);
+          if (!number) number = selected_before(context.selected_tools, line, kNameLinesAround);
+          if (number) {
+            t->tool.number = *number;
+            tools.add(*t, line, c.column, true);
+          } else {
+            listed.push_back({*t, line, c.column});
+          }
+          continue;
+        }
       if (upper.find("TC") != std::string::npos) {
         if (auto t = detail::read_freecad_tool(upper, units)) {
           const auto number = selected_after(context.selected_tools, line, kLabelLinesBefore);

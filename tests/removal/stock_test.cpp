@@ -147,6 +147,22 @@ TEST_CASE("default stock: bounding box of the cutting moves") {
   CHECK(none.diagnostics[0].severity == Severity::Warning);
 }
 
+TEST_CASE("default stock: a ramp down to the only cutting level starts at the stock's top") {
+  // BlenderCAM's helix entry: from Z0 down to Z-5 while travelling in XY, then every level move
+  // at Z-5. Level moves alone give a stock of no height (nothing removed).
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(300).rapid(0, 0, 10).feed(0, 0, 0).feed(10, 0, -2.5).feed(0, 0, -5);
+  p.feed(40, 0, -5).feed(40, 20, -5).rapid(40, 20, 10);
+  const Timeline tl = constant_speed_timeline(p.commands(), 0.1);
+  const auto box = default_stock_box(p.commands(), tl, tools);
+  REQUIRE(box);
+  CHECK(box->zmax == 0);
+  CHECK(box->zmin == -5);
+  const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
+  CHECK(r.removed_mm3 > 0);
+}
+
 TEST_CASE("default stock: feed plunges from a clearance plane do not raise its top") {
   // Two slots, at Z-2 and Z-4, each entered by a feed plunge from the clearance plane Z10;
   // between them the tool crosses at the retract plane Z2 by rapid. A top at the clearance

@@ -328,3 +328,32 @@ TEST_CASE("a program that selects no tool: the one its header names (Eagle stepc
   CHECK(tools.at(0).diameter_mm == doctest::Approx(25.4 / 32));
   CHECK_FALSE(has_warning(diags));
 }
+
+TEST_CASE("BlenderCAM / Fabex: (Tool: D = 3.0 mm  type END flutes 2)") {
+  std::vector<Diagnostic> diags;
+  // Its grbl post selects no tool: the program cuts with the one the comment describes.
+  const auto end_mill = read_tools("(Created with grbl post processor 2024/01/11 09:36)\nG21\n"
+                                   "(G-code generated with BlenderCAM and NC library)\nG17G90\n"
+                                   "(Tool: D = 3.0 mm  type END flutes 2)\nS12000M03\nG00 Z2.0\n",
+                                   diags);
+  REQUIRE(end_mill.count(0));
+  CHECK(end_mill.at(0).shape == ToolShape::FlatEndMill);
+  CHECK(end_mill.at(0).diameter_mm == doctest::Approx(3.0));
+  CHECK(end_mill.at(0).flutes == 2);
+  CHECK(diags.empty());
+  // An imperial scene writes inches with two apostrophes; a post with tool changes numbers it.
+  const auto ball =
+      read_tools("G20\nT2 M06\n(Tool: D = 0.125''  type BALL flutes 4)\nG0 Z0.5\n", diags);
+  REQUIRE(ball.count(2));
+  CHECK(ball.at(2).shape == ToolShape::BallEndMill);
+  CHECK(ball.at(2).diameter_mm == doctest::Approx(3.175));
+  CHECK(ball.at(2).corner_radius_mm == doctest::Approx(1.5875));
+  // Cone cutters: the nearest shape, with a note that says so.
+  diags.clear();
+  const auto cone = read_tools("G21\n(Tool: D = 6.0 mm  type CYLCONE flutes 2)\nG0 Z5\n", diags);
+  REQUIRE(cone.count(0));
+  CHECK(cone.at(0).shape == ToolShape::Chamfer);
+  REQUIRE(diags.size() == 1);
+  CHECK(diags[0].severity == Severity::Note);
+  CHECK(diags[0].message.find("CYLCONE") != std::string::npos);
+}

@@ -152,7 +152,7 @@ private:
   struct PerTool {
     double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, zmin = xmin;
     double xmax = -std::numeric_limits<double>::infinity(), ymax = xmax;
-    double top_level = xmax, top_start = xmax;
+    double top_level = xmax, top_start = xmax, top_travel = xmax;
     double length = 0;
   };
   static constexpr std::size_t kMaxLevels = 4096;

@@ -10,6 +10,7 @@
 #include "line_layout.hpp"
 #include "marker.hpp"
 #include "ncjoule/annotate.hpp"
+#include "ncjoule/text.hpp"
 #include "number_format.hpp"
 #include "strip_line.hpp"
 
@@ -135,7 +136,7 @@ std::string block_comment(std::vector<Field> fields, std::size_t room, const Wri
     std::string content = "NCJ";
     for (const Field& f : fields)
       content += ' ' + f.text;
-    if (style.upper_case) to_upper(content);
+    if (style.upper_case) content = to_upper(content);
     std::string comment = marked_comment(content, MarkKind::Inline, style.comment);
     if (comment.size() + 1 <= room) return comment;
     auto last = std::max_element(fields.begin(), fields.end(), [](const Field& a, const Field& b) {

@@ -4,6 +4,7 @@
 #include <string_view>
 
 #include "ncjoule/energy.hpp"
+#include "ncjoule/text.hpp"
 #include "number_format.hpp"
 
 namespace ncjoule::annotation {
@@ -94,7 +95,7 @@ Group components(const Estimate& estimate) {
   Group g{"ENERGY", {}};
   for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
     std::string key(component_name(PowerComponent(i)));
-    to_upper(key);
+    key = to_upper(key);
     g.fields.push_back(field(key, format_si(estimate.energy.components_j[i], "J")));
   }
   return g;
@@ -220,7 +221,7 @@ void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>&
   std::string content = start;
   auto flush = [&] {
     if (content.size() > start.size()) {
-      if (style.upper_case) to_upper(content);
+      if (style.upper_case) content = to_upper(content);
       lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
     }
     content = start;
@@ -255,7 +256,7 @@ std::vector<std::string> header_lines(const Estimate& estimate, const MachinePro
       content.pop_back();
     while (!content.empty() && content.back() == ' ')
       content.pop_back();
-    if (style.upper_case) to_upper(content);
+    if (style.upper_case) content = to_upper(content);
     lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
   }
   return lines;

@@ -13,7 +13,8 @@ std::size_t skip_blanks(std::string_view line, std::size_t i) {
   return i;
 }
 
-std::string_view trim(std::string_view text) {
+// Without the blanks (space, tab) at either end: a line's own bytes, CR included, are kept.
+std::string_view trim_blanks(std::string_view text) {
   std::size_t b = 0, e = text.size();
   while (b < e && is_blank_char(text[b]))
     ++b;
@@ -56,10 +57,10 @@ bool is_comment_only(std::string_view line) {
 std::string_view first_comment(std::string_view line) {
   const std::size_t open = line.find_first_of("(;");
   if (open == std::string_view::npos) return {};
-  if (line[open] == ';') return trim(line.substr(open + 1));
+  if (line[open] == ';') return trim_blanks(line.substr(open + 1));
   const std::size_t close = line.find(')', open);
   const std::size_t end = close == std::string_view::npos ? line.size() : close;
-  return trim(line.substr(open + 1, end - open - 1));
+  return trim_blanks(line.substr(open + 1, end - open - 1));
 }
 
 bool is_percent_line(std::string_view line) {

@@ -55,11 +55,6 @@ std::string format_si(double value, std::string_view unit) {
   return format_significant(scaled, 3, 3) + kPrefixes[prefix] + std::string(unit);
 }
 
-void to_upper(std::string& text) {
-  for (char& c : text)
-    if (c >= 'a' && c <= 'z') c = char(c - 'a' + 'A');
-}
-
 std::string safe_token(std::string_view text, std::size_t max_length) {
   std::string out;
   for (char c : text) {

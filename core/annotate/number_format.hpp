@@ -18,9 +18,6 @@ std::string format_duration(double seconds);
 // "4.5MJ", "850W", "1.2kW".
 std::string format_si(double value, std::string_view unit);
 
-// Upper-cases ASCII letters in place.
-void to_upper(std::string& text);
-
 // User text (an operation comment, a machine name) as one safe token: characters that are not
 // letters, digits or . , - become '_', runs of '_' collapse, at most `max_length` characters.
 std::string safe_token(std::string_view text, std::size_t max_length);

@@ -7,22 +7,15 @@
 #include <sstream>
 
 #include "ncjoule/calibrate.hpp"
+#include "ncjoule/text.hpp"
 
 namespace ncjoule {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
-    s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back())))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+// A column's name as it is looked up: lower case, without the quotes spreadsheet exports put
+// around headers.
+std::string header_name(std::string_view s) {
+  std::string out = to_lower(s);
   // Spreadsheet exports quote their headers.
   if (out.size() >= 2 && out.front() == '"' && out.back() == '"')
     out = out.substr(1, out.size() - 2);
@@ -49,13 +42,6 @@ std::vector<Field> split(std::string_view line, char separator) {
     begin = end + 1;
   }
   return fields;
-}
-
-bool parse_number(std::string_view text, double& value) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  if (text.empty()) return false;
-  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return ec == std::errc() && ptr == text.data() + text.size() && std::isfinite(value);
 }
 
 } // namespace
@@ -97,7 +83,7 @@ std::optional<NumericCsv> parse_numeric_csv(std::string path, std::string_view t
           error(line_number, f.column, "empty column name in the header");
           return std::nullopt;
         }
-        csv.columns.push_back(lower(f.text));
+        csv.columns.push_back(header_name(f.text));
       }
       have_header = true;
     } else {
@@ -113,7 +99,9 @@ std::optional<NumericCsv> parse_numeric_csv(std::string path, std::string_view t
         bool ok = true;
         for (std::size_t i = 0; i < fields.size(); ++i) {
           columns[i] = fields[i].column;
-          if (!parse_number(fields[i].text, row[i])) {
+          if (const auto value = parse_number(fields[i].text)) {
+            row[i] = *value;
+          } else {
             error(line_number, fields[i].column,
                   "column '" + csv.columns[i] + "': '" + std::string(fields[i].text) +
                       "' is not a number");

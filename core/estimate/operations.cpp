@@ -4,25 +4,14 @@
 #include <cctype>
 #include <cmath>
 
+#include "ncjoule/text.hpp"
+
 namespace ncjoule::estimate_detail {
 namespace {
 
 // How far from a tool change its name is looked for, so that a file without comments costs no
 // more than a few lines per tool change.
 constexpr int kNameSearchLines = 40;
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-std::string_view trim(std::string_view s) {
-  const std::size_t a = s.find_first_not_of(" \t");
-  if (a == std::string_view::npos) return {};
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
 
 bool starts_with(const std::string& s, std::string_view prefix) {
   return s.compare(0, prefix.size(), prefix) == 0;
@@ -112,12 +101,12 @@ bool is_note(const std::string& l) {
 std::string operation_name_in(std::string_view comment) {
   std::string_view text = trim(comment);
   if (text.empty() || text.size() > 80) return {};
-  std::string l = lower(text);
+  std::string l = to_lower(text);
   for (const char* prefix :
        {"begin operation:", "begin operation", "start operation:", "operation:", "op:"}) {
     if (starts_with(l, prefix)) {
       text = trim(text.substr(std::string_view(prefix).size()));
-      l = lower(text);
+      l = to_lower(text);
       break;
     }
   }
@@ -206,7 +195,7 @@ std::string OperationTracker::name_of(const Op& op, const std::function<bool(int
     if (stops(i)) break;
     const auto text = comment_at(i);
     if (!text) continue;
-    if (describes_tool(lower(trim(*text)))) break;
+    if (describes_tool(to_lower(trim(*text)))) break;
     if (std::string name = operation_name_in(*text); !name.empty()) return name;
   }
   // On the tool-change line.

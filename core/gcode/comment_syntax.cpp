@@ -4,6 +4,8 @@
 
 #include <cctype>
 
+#include "ncjoule/text.hpp"
+
 namespace ncjoule::detail {
 namespace {
 
@@ -15,13 +17,6 @@ bool is_letter(char c) {
 }
 
 } // namespace
-
-std::string_view trimmed(std::string_view s) {
-  const std::size_t first = s.find_first_not_of(" \t\r\n");
-  if (first == std::string_view::npos) return {};
-  const std::size_t last = s.find_last_not_of(" \t\r\n");
-  return s.substr(first, last - first + 1);
-}
 
 bool opens_argument_list(std::string_view line, std::size_t paren) {
   std::size_t k = paren;
@@ -76,12 +71,12 @@ LineComments line_comments(std::string_view line, const Dialect& dialect) {
     } else if (c == '(' && dialect.paren_comments) {
       const std::size_t close = detail::comment_close(line, i, dialect);
       const std::size_t end = close == std::string_view::npos ? line.size() : close;
-      out.comments.push_back({detail::trimmed(line.substr(i + 1, end - i - 1)), int(i) + 1});
+      out.comments.push_back({trim(line.substr(i + 1, end - i - 1)), int(i) + 1});
       i = end + 1;
     } else if (c == ';') {
       // A comment to the end of the line, or the Fanuc family's end of block.
       if (dialect.semicolon_comments)
-        out.comments.push_back({detail::trimmed(line.substr(i + 1)), int(i) + 1});
+        out.comments.push_back({trim(line.substr(i + 1)), int(i) + 1});
       break;
     } else {
       out.has_code = true;

@@ -20,7 +20,4 @@ std::size_t paren_length(std::string_view line, std::size_t pos);
 // where the dialect nests comments); npos when the line ends first.
 std::size_t comment_close(std::string_view line, std::size_t open, const Dialect& dialect);
 
-// Without blanks (spaces, tabs, CR, LF) at either end.
-std::string_view trimmed(std::string_view s);
-
 } // namespace ncjoule::detail

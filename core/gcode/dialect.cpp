@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "ncjoule/gcode.hpp"
+#include "ncjoule/text.hpp"
 
 namespace ncjoule {
 namespace {
@@ -91,13 +92,6 @@ const std::vector<Dialect>& dialects() {
   return all;
 }
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
 // ncjoule's own annotations ("(NCJ ... CK=XXXXXX)", "; NCJ ...") name the dialect they were
 // written for: they must not tell it again. Expects lower case.
 std::string without_annotations(std::string line) {
@@ -113,7 +107,7 @@ std::string without_annotations(std::string line) {
 } // namespace
 
 std::optional<Dialect> find_dialect(std::string_view name) {
-  const std::string n = lower(name);
+  const std::string n = to_lower(name);
   for (const Dialect& d : dialects())
     if (d.name == n) return d;
   if (n == "mach4") return find_dialect("mach3");
@@ -145,7 +139,7 @@ DialectChoice choose_dialect(const SourceFile& source) {
     return l.find(what) != std::string::npos;
   };
   for (std::size_t i = 0; i < limit; ++i) {
-    std::string l = without_annotations(lower(source.line_text(i)));
+    std::string l = without_annotations(to_lower(source.line_text(i)));
     const std::size_t first = l.find_first_not_of(" \t");
     if (first == std::string::npos) continue;
     l.erase(0, first);

@@ -18,6 +18,8 @@
 
 #include "interpreter_impl.hpp"
 
+#include "ncjoule/text.hpp"
+
 namespace ncjoule::detail {
 namespace {
 
@@ -25,13 +27,6 @@ bool is_any(std::string_view name, std::initializer_list<std::string_view> names
   for (std::string_view n : names)
     if (name == n) return true;
   return false;
-}
-
-std::string upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    c = char(std::toupper(static_cast<unsigned char>(c)));
-  return out;
 }
 
 // The Sinumerik drilling cycles that expand into moves.
@@ -77,8 +72,8 @@ std::optional<Interpreter::SinumerikCycle> Interpreter::parse_cycle(const Keywor
     std::string err;
     std::size_t off = 0;
     if (!evaluate(a, params_, value, err, off)) {
-      warning(k.column, "argument " + std::to_string(c.args.size() + 1) + " of " + upper(k.name) +
-                            " ('" + std::string(a) +
+      warning(k.column, "argument " + std::to_string(c.args.size() + 1) + " of " +
+                            to_upper(k.name) + " ('" + std::string(a) +
                             "') is not a number this interpreter can evaluate: taken as empty");
       c.args.push_back(std::nullopt);
       continue;
@@ -104,7 +99,7 @@ void Interpreter::keywords(const Block& b, BlockValues& v,
   bool mcall = false;
   for (std::size_t n = 0; n < b.keywords.size(); ++n) {
     const Keyword& k = b.keywords[n];
-    const std::string name = upper(k.name);
+    const std::string name = to_upper(k.name);
     if (sinumerik && k.name == "mcall") {
       mcall = true;
       // MCALL alone ends the modal call; MCALL followed by a cycle starts one.
@@ -170,7 +165,7 @@ void Interpreter::keywords(const Block& b, BlockValues& v,
     if (sinumerik && (k.name == "m17" || k.name == "ret")) continue;
     if (sinumerik && is_planner_word(k.name)) {
       std::string text = name;
-      if (k.has_parens) text += "(" + upper(k.args) + ")";
+      if (k.has_parens) text += "(" + to_upper(k.args) + ")";
       emit_simple(CanonKind::PlannerHint, 0, text);
       continue;
     }

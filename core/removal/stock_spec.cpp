@@ -6,28 +6,10 @@
 #include <limits>
 
 #include "ncjoule/removal.hpp"
+#include "ncjoule/text.hpp"
 
 namespace ncjoule {
-namespace {
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    c = char(std::tolower(static_cast<unsigned char>(c)));
-  return out;
-}
-
-bool parse_number(std::string_view text, double& value) {
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())))
-    text.remove_prefix(1);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-    text.remove_suffix(1);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
-}
-
-} // namespace
+namespace {} // namespace
 
 std::optional<StockSpec> parse_stock_spec(std::string_view text,
                                           std::vector<Diagnostic>* diagnostics,
@@ -39,7 +21,7 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text,
     return std::nullopt;
   };
   StockSpec spec;
-  const std::string low = lower(text);
+  const std::string low = to_lower(text);
   if (low.empty() || low == "auto" || low == "default") return spec;
   if (low.rfind("box:", 0) == 0) {
     double v[6];
@@ -49,8 +31,10 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text,
       if ((k < 5) != (comma != std::string_view::npos))
         return fail("stock box needs six numbers: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm)", rest);
       const std::string_view field = rest.substr(0, comma);
-      if (!parse_number(field, v[k]))
+      const std::optional<double> value = parse_number(field);
+      if (!value)
         return fail("stock box value '" + std::string(field) + "' is not a number", field);
+      v[k] = *value;
       rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
     }
     spec.kind = StockSpec::Kind::Box;

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "ncjoule/removal.hpp"
+#include "ncjoule/text.hpp"
 #include "tool_words.hpp"
 
 namespace ncjoule {
@@ -107,7 +108,7 @@ std::map<int, Tool> tools_from_table(const ToolTable& table, std::vector<Diagnos
     tool.number = number;
     tool.diameter_mm = entry.diameter;
     tool.description = entry.comment;
-    const std::string upper = detail::to_upper(entry.comment);
+    const std::string upper = to_upper(entry.comment);
     if (const auto guess = detail::guess_shape(upper)) {
       tool.shape = guess->shape;
       if (tool.shape == ToolShape::BallEndMill) tool.corner_radius_mm = tool.radius();

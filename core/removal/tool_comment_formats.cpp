@@ -14,7 +14,8 @@ double number(const std::string& s) {
   return std::strtod(s.c_str(), nullptr);
 }
 
-std::string trim(std::string s) {
+// Without the blanks and separators (",", "-", ":") posts put around a tool's name.
+std::string trim_separators(std::string s) {
   const std::size_t first = s.find_first_not_of(" \t,-:");
   if (first == std::string::npos) return {};
   const std::size_t last = s.find_last_not_of(" \t,-:");
@@ -122,7 +123,8 @@ std::optional<DescribedTool> read_fusion_tool(const std::string& upper, Descript
   if (std::regex_search(upper, m, taper)) taper_deg = number(m[1]);
   // The type is the last " - " field.
   const std::size_t dash = upper.rfind(" - ");
-  tool.description = dash == std::string::npos ? std::string() : trim(upper.substr(dash + 3));
+  tool.description =
+      dash == std::string::npos ? std::string() : trim_separators(upper.substr(dash + 3));
   apply_shape(d, tool.description, taper_deg);
   return d;
 }
@@ -163,7 +165,7 @@ std::optional<DescribedTool> read_cambam_tool(const std::string& upper, Descript
   DescribedTool d;
   d.tool.number = std::atoi(m[1].str().c_str());
   d.tool.diameter_mm = number(m[2]) * units.mm_per_unit();
-  d.tool.description = m.size() > 3 && m[3].matched ? trim(m[3]) : std::string();
+  d.tool.description = m.size() > 3 && m[3].matched ? trim_separators(m[3]) : std::string();
   // CamBam's tool comment is free text: "surfacing bit" names no shape; a flat end mill then,
   // with only a note (its lists are mostly end mills).
   apply_shape(d, d.tool.description);
@@ -176,7 +178,7 @@ std::optional<DescribedTool> read_numbered_list_tool(const std::string& upper,
   static const std::regex entry(R"(^T?\s*(\d+)\s*=\s*(.+)$)");
   std::smatch m;
   if (!std::regex_match(upper, m, entry)) return std::nullopt;
-  return sized_description(trim(m[2]), std::atoi(m[1].str().c_str()), true, units);
+  return sized_description(trim_separators(m[2]), std::atoi(m[1].str().c_str()), true, units);
 }
 
 std::optional<DescribedTool> read_keyed_tool(const std::string& upper, DescriptionUnits units) {
@@ -184,7 +186,7 @@ std::optional<DescribedTool> read_keyed_tool(const std::string& upper, Descripti
       R"(^\s*(?:T|TOOL\s*(?:NO\.?|NUMBER|#)?)\s*[#:.\-]?\s*0*(\d+)(?=[\s\-:,]|$)\s*[-:,]?\s*(.*)$)");
   std::smatch m;
   if (!std::regex_match(upper, m, head)) return std::nullopt;
-  return sized_description(trim(m[2]), std::atoi(m[1].str().c_str()), true, units);
+  return sized_description(trim_separators(m[2]), std::atoi(m[1].str().c_str()), true, units);
 }
 
 std::optional<DescribedTool> read_blendercam_tool(const std::string& upper,
@@ -240,7 +242,7 @@ std::optional<DescribedTool> read_free_tool(const std::string& upper, Descriptio
   // 0.05906IN", a header's "USE A 1/32INCH BIT".
   static const std::regex prefix(
       R"(^\s*(?:MSG\s*,\s*)?(?:CHANGE\s+TOOL(?:\s+BIT\s+TO)?|TOOL\s*CHANGE|TOOL|USE\s+AN?)\s*:?\s*)");
-  const std::string text = trim(std::regex_replace(upper, prefix, ""));
+  const std::string text = trim_separators(std::regex_replace(upper, prefix, ""));
   if (!guess_shape(text)) return std::nullopt;
   return sized_description(text, 0, false, units);
 }

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "ncjoule/removal.hpp"
+#include "ncjoule/text.hpp"
 #include "tool_comment_formats.hpp"
 #include "tool_words.hpp"
 
@@ -136,7 +137,7 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
     const LineComments lc = line_comments(source.line_text(index), context.dialect);
     if (lc.has_code) in_tool_list = in_header = false;
     for (const LineComment& c : lc.comments) {
-      const std::string upper = detail::to_upper(c.text);
+      const std::string upper = to_upper(c.text);
       if (upper == "REQUIRED TOOLS:") {
         in_tool_list = true;
         continue;

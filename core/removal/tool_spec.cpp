@@ -7,16 +7,10 @@
 #include <vector>
 
 #include "ncjoule/removal.hpp"
+#include "ncjoule/text.hpp"
 
 namespace ncjoule {
 namespace {
-
-bool parse_number(std::string_view text, double& value) {
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return !text.empty() && ec == std::errc() && end == text.data() + text.size() &&
-         std::isfinite(value);
-}
 
 std::vector<std::string_view> split(std::string_view text, char separator) {
   std::vector<std::string_view> fields;
@@ -87,7 +81,8 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
     return fail("a tool is N:TYPE:DIAMETER, e.g. 1:flat:6, 2:ball:6, 3:drill:6.8:118");
   ToolFields fields;
   double number = 0;
-  if (!parse_number(f[0], number) || number < 0 || number != std::floor(number) || number > 1e6)
+  if (const auto n = parse_number(f[0])) number = *n;
+  if (!parse_number(f[0]) || number < 0 || number != std::floor(number) || number > 1e6)
     return fail("tool number '" + std::string(f[0]) + "' is not a whole number", f[0]);
   fields.number = int(number);
   fields.type = std::string(f[1]);
@@ -98,8 +93,10 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
                 f[1]);
   double v[4] = {0, 0, 0, 0};
   for (std::size_t k = 2; k < f.size(); ++k)
-    if (k - 2 >= 4 || !parse_number(f[k], v[k - 2]))
+    if (k - 2 >= 4 || !parse_number(f[k]))
       return fail("tool value '" + std::string(f[k]) + "' is not a number", f[k]);
+    else
+      v[k - 2] = *parse_number(f[k]);
   const std::size_t extras = f.size() - 3;
   fields.diameter_mm = v[0];
   switch (*shape) {

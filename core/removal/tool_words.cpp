@@ -14,13 +14,6 @@ bool has(std::string_view text, std::string_view word) {
 
 } // namespace
 
-std::string to_upper(std::string_view s) {
-  std::string out(s);
-  for (char& c : out)
-    c = char(std::toupper(static_cast<unsigned char>(c)));
-  return out;
-}
-
 std::optional<ShapeGuess> guess_shape(std::string_view t) {
   ShapeGuess g;
   // Order matters: "BALL END MILL" is a ball, "SPOT DRILL" is a 90-degree drill, and

@@ -27,6 +27,4 @@ std::optional<double> size_in_description(std::string_view upper_text, bool inch
 // An angle written as "60 DEG", "90DEG", "90 DEGREE", "118°" in a description.
 std::optional<double> angle_in_description(std::string_view upper_text);
 
-std::string to_upper(std::string_view s);
-
 } // namespace ncjoule::detail

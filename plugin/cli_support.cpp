@@ -8,6 +8,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "ncjoule/text_file.hpp"
+
 namespace ncjoule::cli {
 
 std::optional<SourceFile> read_source(const std::string& path) {
@@ -17,21 +19,13 @@ std::optional<SourceFile> read_source(const std::string& path) {
     buffer << std::cin.rdbuf();
     text = buffer.str();
   } else {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
-      std::cerr << "ncjoule: cannot read " << path << ": it is a directory, not an NC file\n";
+    std::vector<Diagnostic> problems;
+    std::optional<std::string> read = read_text_file(path, "an NC file", problems);
+    if (!read) {
+      print_diagnostics(problems);
       return std::nullopt;
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-      std::cerr << "ncjoule: cannot read " << path << ": no such file or not readable\n";
-      return std::nullopt;
-    }
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    if (in.bad()) {
-      std::cerr << "ncjoule: error while reading " << path << "\n";
-      return std::nullopt;
-    }
+    text = std::move(*read);
   }
   return make_source(path == "-" ? "<stdin>" : path, std::move(text));
 }

@@ -10,6 +10,8 @@
 
 #include "cli_support.hpp"
 
+#include "ncjoule/text_file.hpp"
+
 namespace ncjoule::cli {
 namespace {
 
@@ -115,12 +117,10 @@ const std::optional<UserConfig>& user_config() {
   static const std::optional<UserConfig> config = []() -> std::optional<UserConfig> {
     const std::string path = user_config_path();
     if (path.empty() || !is_file(path)) return UserConfig{};
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
     std::vector<Diagnostic> diagnostics;
-    auto parsed = in ? parse_user_config(text.str(), path, diagnostics) : std::nullopt;
-    if (!in) diagnostics.push_back({Severity::Error, path, 0, 0, "cannot read the user config"});
+    const std::optional<std::string> text =
+        read_text_file(path, "a user config (TOML)", diagnostics);
+    auto parsed = text ? parse_user_config(*text, path, diagnostics) : std::nullopt;
     print_diagnostics(diagnostics);
     if (!parsed)
       std::cerr << "ncjoule: fix " << path << " (or point NCJOULE_CONFIG at another file)\n";

@@ -8,6 +8,7 @@
 
 #include "ncjoule/calibrate.hpp"
 #include "ncjoule/text.hpp"
+#include "ncjoule/text_file.hpp"
 
 namespace ncjoule {
 namespace {
@@ -126,14 +127,9 @@ std::optional<NumericCsv> parse_numeric_csv(std::string path, std::string_view t
 
 std::optional<NumericCsv> read_numeric_csv(const std::string& path,
                                            std::vector<Diagnostic>& diagnostics) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    diagnostics.push_back({Severity::Error, path, 0, 0, "cannot open the file"});
-    return std::nullopt;
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_numeric_csv(path, buffer.str(), diagnostics);
+  const std::optional<std::string> text = read_text_file(path, "a CSV file", diagnostics);
+  if (!text) return std::nullopt;
+  return parse_numeric_csv(path, *text, diagnostics);
 }
 
 } // namespace ncjoule

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "ncjoule/estimate.hpp"
+#include "ncjoule/text_file.hpp"
 
 namespace ncjoule {
 namespace {
@@ -186,14 +187,9 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
 
 std::optional<JobFile> read_job_file(const std::string& path,
                                      std::vector<Diagnostic>& diagnostics) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    diagnostics.push_back({Severity::Error, path, 0, 0, "cannot open the job file"});
-    return std::nullopt;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_job_file(text.str(), path, diagnostics);
+  const std::optional<std::string> text = read_text_file(path, "a job file", diagnostics);
+  if (!text) return std::nullopt;
+  return parse_job_file(*text, path, diagnostics);
 }
 
 } // namespace ncjoule

@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include "ncjoule/profile.hpp"
+#include "ncjoule/text_file.hpp"
 #include "sections.hpp"
 #include "table_reader.hpp"
 
@@ -55,15 +56,11 @@ MachineProfile parse_profile(std::string_view text, const std::string& path) {
 }
 
 MachineProfile load_profile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw ProfileError(path, "", "is a directory, not a machine profile (.toml)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ProfileError(path, "", "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ProfileError(path, "", "cannot read the file");
-  return parse_profile(text.str(), path);
+  std::vector<Diagnostic> problems;
+  const std::optional<std::string> text =
+      read_text_file(path, "a machine profile (.toml)", problems);
+  if (!text) throw ProfileError(path, "", problems.front().message);
+  return parse_profile(*text, path);
 }
 
 } // namespace ncjoule

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "ncjoule/removal.hpp"
+#include "ncjoule/text_file.hpp"
 
 namespace ncjoule {
 namespace {
@@ -111,14 +112,9 @@ std::optional<TriangleMesh> parse_stl(std::string_view bytes, const std::string&
 
 std::optional<TriangleMesh> read_stl(const std::string& path,
                                      std::vector<Diagnostic>& diagnostics) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    diagnostics.push_back({Severity::Error, path, 0, 0, "cannot open the STL file"});
-    return std::nullopt;
-  }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_stl(buffer.str(), path, diagnostics);
+  const std::optional<std::string> bytes = read_text_file(path, "an STL file", diagnostics);
+  if (!bytes) return std::nullopt;
+  return parse_stl(*bytes, path, diagnostics);
 }
 
 } // namespace ncjoule

@@ -15,6 +15,7 @@
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
+#include "ncjoule/text_file.hpp"
 #include "output_file.hpp"
 
 struct ncjoule_context {
@@ -80,9 +81,10 @@ std::optional<std::string> annotated_text(ncjoule_context* context, const std::s
 }
 
 std::optional<std::string> read_file(const char* path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return fail(std::string("cannot read ") + path), std::nullopt;
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<ncjoule::Diagnostic> problems;
+  auto text = ncjoule::read_text_file(path, "a file", problems);
+  if (!text) fail(ncjoule::format_diagnostic(problems.front()));
+  return text;
 }
 
 } // namespace

@@ -16,6 +16,7 @@
 #include "ncjoule/calibrate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
+#include "ncjoule/text_file.hpp"
 #include "output_file.hpp"
 
 namespace ncjoule::cli {
@@ -41,14 +42,6 @@ struct CalibrateCliOptions {
   double max_offset_s = 60;
   std::string loss = "huber";
 };
-
-std::optional<std::string> read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 void print_report(const FitReport& fit) {
   std::printf("%s: %zu points, RMSE %.6g, R^2 %.5f%s%s\n", fit.what.c_str(), fit.points, fit.rmse,
@@ -206,9 +199,10 @@ int run_calibrate(const CalibrateCliOptions& o) {
   MachineProfile machine;
   std::string base_text;
   if (!o.machine.empty()) {
-    auto text = read_text(o.machine);
+    std::vector<Diagnostic> problems;
+    auto text = read_text_file(o.machine, "a machine profile (.toml)", problems);
     if (!text) {
-      std::fprintf(stderr, "%s: cannot read the machine profile\n", o.machine.c_str());
+      print_diagnostics(problems);
       return kInputError;
     }
     base_text = *text;

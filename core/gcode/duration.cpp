@@ -15,7 +15,10 @@ ClockParts split_duration(double seconds, double step) {
   if (step > 0 && seconds / step < 1e15) seconds = std::round(seconds / step) * step;
   ClockParts p;
   p.hours = std::floor(seconds / 3600);
-  const double rest = seconds - p.hours * 3600;
+  double rest = seconds - p.hours * 3600;
+  // Past 2^53 s the hours cannot hold the rest (rounding makes it negative or huge): the hours
+  // say all there is to say.
+  if (!(rest >= 0 && rest < 3600)) rest = 0;
   p.minutes = static_cast<int>(std::fmin(59, std::floor(rest / 60)));
   p.seconds = std::fmax(0, rest - p.minutes * 60.0);
   return p;

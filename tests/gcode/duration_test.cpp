@@ -29,3 +29,17 @@ TEST_CASE("durations never overflow and never go negative") {
   CHECK(p.minutes == 0);
   CHECK(p.seconds == 0);
 }
+
+TEST_CASE("durations past double precision split into hours alone, never an out-of-range int") {
+  // Found by the pipeline fuzz target: a Z move of 2e29 mm at a feed rate gave a rest of
+  // -4.6e9 s after the hours, cast to int.
+  for (const double seconds : {1.6e25, 3.3e29, 1e300, 9.007199254740993e15 * 3600}) {
+    CAPTURE(seconds);
+    const ClockParts p = split_duration(seconds, 0.1);
+    CHECK(p.minutes >= 0);
+    CHECK(p.minutes <= 59);
+    CHECK(p.seconds >= 0);
+    CHECK(p.seconds < 60);
+    CHECK(p.hours == doctest::Approx(seconds / 3600));
+  }
+}

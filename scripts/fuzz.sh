@@ -40,8 +40,8 @@ for target in "${targets[@]}"; do
     find "$root/samples" -type f \( -name '*.ngc' -o -name '*.nc' \) -size -16k \
       -exec cp -f {} "$seeds/" \; 2>/dev/null || true
   fi
-  # Short inputs keep the targets fast: on one core the lexer runs about 1,000, the interpreter 1,500
-  # inputs a second, profiles 24,000, the pipeline about 390 (it interprets twice, plans,
+  # Short inputs keep the targets fast. On one core, inputs a second: the lexer about 1,000, the
+  # interpreter 1,500, profiles 24,000, the pipeline about 390 (it interprets twice, plans,
   # removes, integrates power, annotates and strips every input: run two for 1M in 25 minutes).
   # The pipeline gets a longer timeout: a short loop can be a legitimately long program
   # (thousands of samples per move to plan, remove and integrate under the sanitizers).

@@ -10,6 +10,8 @@
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "ncjoule/profile.hpp"
+#include "ncjoule/text.hpp"
+#include "ncjoule/text_file.hpp"
 #include "user_config.hpp"
 
 namespace ncjoule::cli {
@@ -125,16 +127,17 @@ std::optional<EstimateSettings> completed(EstimateSettings s, const std::string&
   if (s.job.empty()) s.job = program_job_file(program);
   if (s.stock.empty()) {
     if (const std::string file = program_stock_file(program); !file.empty()) {
-      std::ifstream in(file);
-      std::string line;
-      std::getline(in, line);
-      while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
-        line.pop_back();
-      std::size_t indent = 0;
-      while (indent < line.size() && std::isspace(static_cast<unsigned char>(line[indent])))
-        ++indent;
-      line.erase(0, indent);
-      s.program_stock_origin = {file, 1, int(indent) + 1};
+      std::vector<Diagnostic> problems;
+      const std::optional<std::string> text = read_text_file(file, "a stock file", problems);
+      if (!text) {
+        print_diagnostics(problems);
+        return std::nullopt;
+      }
+      // The first line, trimmed; its column kept for the diagnostics of what it says.
+      const std::string_view first_line = std::string_view(*text).substr(0, text->find('\n'));
+      const std::string_view stock = trim(first_line);
+      s.program_stock_origin = {file, 1, int(stock.data() - first_line.data()) + 1};
+      const std::string line(stock);
       if (line.empty()) {
         std::cerr << "ncjoule: " << file << " is empty: give one stock (box:... or an STL file)\n";
         return std::nullopt;

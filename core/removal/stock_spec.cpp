@@ -9,8 +9,6 @@
 #include "ncjoule/text.hpp"
 
 namespace ncjoule {
-namespace {} // namespace
-
 std::optional<StockSpec> parse_stock_spec(std::string_view text,
                                           std::vector<Diagnostic>* diagnostics,
                                           const TextOrigin& origin) {

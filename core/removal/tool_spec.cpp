@@ -80,11 +80,10 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
   if (f.size() < 3)
     return fail("a tool is N:TYPE:DIAMETER, e.g. 1:flat:6, 2:ball:6, 3:drill:6.8:118");
   ToolFields fields;
-  double number = 0;
-  if (const auto n = parse_number(f[0])) number = *n;
-  if (!parse_number(f[0]) || number < 0 || number != std::floor(number) || number > 1e6)
+  const std::optional<double> number = parse_number(f[0]);
+  if (!number || *number < 0 || *number != std::floor(*number) || *number > 1e6)
     return fail("tool number '" + std::string(f[0]) + "' is not a whole number", f[0]);
-  fields.number = int(number);
+  fields.number = int(*number);
   fields.type = std::string(f[1]);
   const auto shape = tool_shape_from_name(f[1]);
   if (!shape)
@@ -92,11 +91,12 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
                     "' is not one of flat, ball, bullnose, drill, chamfer",
                 f[1]);
   double v[4] = {0, 0, 0, 0};
-  for (std::size_t k = 2; k < f.size(); ++k)
-    if (k - 2 >= 4 || !parse_number(f[k]))
+  for (std::size_t k = 2; k < f.size(); ++k) {
+    const std::optional<double> value = parse_number(f[k]);
+    if (k - 2 >= 4 || !value)
       return fail("tool value '" + std::string(f[k]) + "' is not a number", f[k]);
-    else
-      v[k - 2] = *parse_number(f[k]);
+    v[k - 2] = *value;
+  }
   const std::size_t extras = f.size() - 3;
   fields.diameter_mm = v[0];
   switch (*shape) {

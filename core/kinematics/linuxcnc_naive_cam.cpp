@@ -53,9 +53,10 @@ bool NaiveCam::linkable(const Pose& p, double tolerance) const {
   return true;
 }
 
-void NaiveCam::see(const Pose& p, std::size_t index, const CanonCommand& move, double tolerance) {
+void NaiveCam::see(const Pose& from, const Pose& p, std::size_t index, const CanonCommand& move,
+                   double tolerance) {
   if (!points_.empty() && !linkable(p, tolerance)) flush();
-  if (points_.empty()) start_ = move.start;
+  if (points_.empty()) start_ = from;
   points_.push_back(Point{p, index});
   last_ = &move;
   if (!same_rotary(p, start_)) flush();
@@ -66,7 +67,7 @@ bool NaiveCam::offer(std::size_t index, const CanonCommand& move, double toleran
       move.state.feed_mode != FeedMode::UnitsPerMinute)
     return false;
   if (move.kind == CanonKind::Feed) {
-    see(move.end, index, move, tolerance);
+    see(move.start, move.end, index, move, tolerance);
     return true;
   }
   if (move.kind != CanonKind::Arc || move.plane != Plane::XY) return false;
@@ -78,8 +79,9 @@ bool NaiveCam::offer(std::size_t index, const CanonCommand& move, double toleran
   mid.a = (move.start.a + move.end.a) / 2;
   mid.b = (move.start.b + move.end.b) / 2;
   mid.c = (move.start.c + move.end.c) / 2;
-  see(mid, index, move, tolerance);
-  if (!points_.empty()) see(move.end, index, move, tolerance);
+  see(move.start, mid, index, move, tolerance);
+  // When the end does not link, the middle closes a move and the end starts the next from it.
+  if (!points_.empty()) see(mid, move.end, index, move, tolerance);
   return true;
 }
 

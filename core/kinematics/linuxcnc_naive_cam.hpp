@@ -45,7 +45,9 @@ private:
     std::size_t command;
   };
   bool linkable(const Pose& p, double tolerance) const;
-  void see(const Pose& p, std::size_t index, const CanonCommand& move, double tolerance);
+  // A point the path reaches, coming from `from` (where a new group starts).
+  void see(const Pose& from, const Pose& p, std::size_t index, const CanonCommand& move,
+           double tolerance);
 
   Sink sink_;
   Pose start_; // where the held group starts

@@ -144,7 +144,7 @@ bool PathBuilder::event(const CanonCommand& c) {
 
 void PathBuilder::stop() {
   naive_cam_.flush();
-  if (pending_) settle(std::nullopt, false, 0, 0); // never finalised: LinuxCNC does not either
+  if (pending_) settle(std::nullopt, false, 0, 0, false); // never finalised: nor in LinuxCNC
   flowing_ = false;
 }
 
@@ -169,14 +169,16 @@ void PathBuilder::queue(Segment&& s, std::vector<Member>&& members) {
     default:
       break;
     }
-    settle(std::move(j.blend), j.consumed, j.consumed_length, cap);
+    const bool continues = !members.empty() && !pending_members_.empty() &&
+                           members.front().command == pending_members_.back().command;
+    settle(std::move(j.blend), j.consumed, j.consumed_length, cap, continues);
   }
   pending_ = std::move(s);
   pending_members_ = std::move(members);
 }
 
 void PathBuilder::settle(std::optional<Segment> blend, bool consumed, double consumed_length,
-                         double exit_cap) {
+                         double exit_cap, bool continues) {
   // The items this move is charged with: its blend arc in (less what of it ran the move before),
   // and its own segment, or, when a blend consumed what was left of it, the part of the next
   // blend arc that runs that rest (LinuxCNC lists such a move with no time at all).
@@ -206,16 +208,35 @@ void PathBuilder::settle(std::optional<Segment> blend, bool consumed, double con
   for (const Member& m : pending_members_)
     members += m.length;
   // Each line's share, in proportion to its length, of the stretch [begin, end].
-  auto fraction = [&](double at) {
-    return total > 0 ? static_cast<float>(std::clamp(at / total, 0.0, 1.0)) : 0.0f;
+  auto fraction = [](double at, double of) {
+    return of > 0 ? static_cast<float>(std::clamp(at / of, 0.0, 1.0)) : 0.0f;
   };
   double done = 0;
   for (const Member& m : pending_members_) {
+    const bool last = &m == &pending_members_.back();
     const double from = members > 0 ? done / members : 0;
     done += m.length;
-    const double to = members > 0 && &m != &pending_members_.back() ? done / members : 1;
-    charge.begin = fraction(begin + (end - begin) * from);
-    charge.end = fraction(begin + (end - begin) * to);
+    const double to = members > 0 && !last ? done / members : 1;
+    const double from_mm = begin + (end - begin) * from, to_mm = begin + (end - begin) * to;
+    if (last && continues) { // its end is in the next segment
+      open_charge_ = OpenCharge{m.command, charge.first, from_mm};
+      continue;
+    }
+    if (open_charge_ && open_charge_->command == m.command) { // its middle was in the last one
+      Charge whole;
+      whole.first = open_charge_->first;
+      whole.count = static_cast<std::uint16_t>(charge.first + charge.count - whole.first);
+      double before = 0; // from the start of the first item to this segment's first
+      for (std::uint32_t i = whole.first; i < charge.first; ++i)
+        before += items_[i].length;
+      whole.begin = fraction(open_charge_->begin_mm, before + total);
+      whole.end = fraction(before + to_mm, before + total);
+      open_charge_.reset();
+      sink_(m.command, whole);
+      continue;
+    }
+    charge.begin = fraction(from_mm, total);
+    charge.end = fraction(to_mm, total);
     sink_(m.command, charge);
   }
   pending_.reset();
@@ -256,7 +277,8 @@ void PathBuilder::apply_state(Segment& s, const CanonCommand& c) {
 Segment PathBuilder::line_segment(const CanonCommand& last, const Pose& start,
                                   const Pose& end) const {
   CanonCommand chord;
-  chord.kind = last.kind;
+  // An arc the naive-CAM detector took in is run as part of a straight move.
+  chord.kind = last.kind == CanonKind::Arc ? CanonKind::Feed : last.kind;
   chord.line = last.line;
   chord.start = start;
   chord.end = end;

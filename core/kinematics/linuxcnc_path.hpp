@@ -15,6 +15,7 @@
 // The programmed path (what removal sees) is not changed; only its timing is.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -28,8 +29,9 @@
 
 namespace ncjoule::kinematics_detail::linuxcnc {
 
-// What one move command is charged with: `count` consecutive items from `first` (0, 1 or 2), and
-// of their total length the part between the fractions `begin` and `end`.
+// What one move command is charged with: `count` consecutive items from `first` (0 to 2, up to 4
+// for an arc split over two segments), and of their total length the part between the fractions
+// `begin` and `end`.
 struct Charge {
   std::uint32_t first = 0;
   std::uint16_t count = 0;
@@ -53,13 +55,17 @@ public:
   void finish() { stop(); }
   // The oldest item a move still to be charged may be charged with.
   std::size_t oldest_item_in_use() const {
-    return pending_arc_in_ ? *pending_arc_in_ : items_.size();
+    std::size_t oldest = pending_arc_in_ ? *pending_arc_in_ : items_.size();
+    if (open_charge_) oldest = std::min<std::size_t>(oldest, open_charge_->first);
+    return oldest;
   }
 
 private:
   void send(MergedLine&& line); // a straight move as the planner receives it
   void queue(Segment&& s, std::vector<Member>&& members);
-  void settle(std::optional<Segment> blend, bool consumed, double consumed_length, double exit_cap);
+  // `continues`: the last line charged with the pending segment goes on in the next one.
+  void settle(std::optional<Segment> blend, bool consumed, double consumed_length, double exit_cap,
+              bool continues);
   std::uint32_t push(const Segment& s, double exit_cap);
   Segment line_segment(const CanonCommand& state_from, const Pose& start, const Pose& end) const;
   Segment circle_segment(const CanonCommand& c) const;
@@ -83,8 +89,17 @@ private:
   std::vector<Member> pending_members_;
   std::optional<std::uint32_t> pending_arc_in_;
   double arc_in_skip_ = 0; // mm at the start of that arc that run the move before
-  bool flowing_ = false;   // the last item written runs on into the next one
-  double exit_cap_ = 0;    // its own limit at that junction
+  // An arc the naive-CAM detector split over two segments (its middle point closed one group, its
+  // end opened the next, as emccanon's see_segment does): charged once, when the second segment
+  // settles, with everything from where it began in the first.
+  struct OpenCharge {
+    std::size_t command = 0;
+    std::uint32_t first = 0; // the first item of the first segment's charge
+    double begin_mm = 0;     // where the arc begins, from the start of that item
+  };
+  std::optional<OpenCharge> open_charge_;
+  bool flowing_ = false; // the last item written runs on into the next one
+  double exit_cap_ = 0;  // its own limit at that junction
 };
 
 } // namespace ncjoule::kinematics_detail::linuxcnc

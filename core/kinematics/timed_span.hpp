@@ -12,7 +12,9 @@ namespace ncjoule::kinematics_detail {
 
 class TimedSpan {
 public:
-  static constexpr int kMaxPieces = 2;
+  // An arc the naive-CAM detector split runs over four: the blend arc into the first segment,
+  // that segment, the blend arc between, and the second (linuxcnc_path.hpp).
+  static constexpr int kMaxPieces = 4;
 
   TimedSpan() = default;
   explicit TimedSpan(const VelocityProfile& whole) { add(whole); }

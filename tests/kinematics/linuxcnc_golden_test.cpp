@@ -97,7 +97,7 @@ Comparison compare(const std::string& name) {
   return c;
 }
 
-void check(const std::string& name) {
+void check(const std::string& name, double p95_target = 0.03) {
   CAPTURE(name);
   const Comparison c = compare(name);
   CAPTURE(c.linuxcnc_s);
@@ -105,7 +105,7 @@ void check(const std::string& name) {
   CAPTURE(c.worst);
   CHECK(c.lines > 0);
   CHECK(std::abs(c.ncjoule_s - c.linuxcnc_s) / c.linuxcnc_s < 0.01);
-  CHECK(c.p95 < 0.03);
+  CHECK(c.p95 < p95_target);
 }
 
 } // namespace
@@ -124,6 +124,12 @@ TEST_CASE("linuxcnc-2.9 rule against LinuxCNC: line-arc and arc-arc joins, helic
 }
 TEST_CASE("linuxcnc-2.9 rule against LinuxCNC: naive-CAM merging under G64 P Q") {
   check("naivecam");
+}
+TEST_CASE("linuxcnc-2.9 rule against LinuxCNC: corner arcs split between two naive-CAM moves") {
+  // The total as LinuxCNC's. Per line, LinuxCNC lists an arc's second half on the last line of
+  // the move it ends up in; ncjoule keeps it on the arc: lines differ by up to 8% where the
+  // corner radius changes, so the per-line target is wider here.
+  check("splitarcs", 0.08);
 }
 TEST_CASE("linuxcnc-2.9 rule against LinuxCNC: codes that stop the path and codes that do not") {
   check("stops");

@@ -210,6 +210,44 @@ TEST_CASE("naive CAM takes an XY arc within Q of its chord as two points of a st
   CHECK(t.commands[2].duration_s == doctest::Approx(10.0 / 20).epsilon(1e-2));
 }
 
+TEST_CASE("an arc whose middle ends one naive-CAM move and whose end starts the next") {
+  // G64 P0.5, a 90-degree corner arc of radius 1 after a 19 mm line: the arc's middle is within
+  // 0.5 of the line (0,0)-middle, its end is not, so the detector sends two straight moves and
+  // the arc is in both. It runs as the same path written with two G1s (middle, end), and is
+  // charged once, with both halves and the blend between them, though its first half settles
+  // long before its second (64 more moves keep the queue busy).
+  const double q = 0.5;
+  CanonCommand mode = event(CanonKind::PathControl, q);
+  mode.state.path_tolerance = q;
+  const Pose mid = at(19 + std::sqrt(0.5), 1 - std::sqrt(0.5));
+  auto program = [&](bool as_lines) {
+    std::vector<CanonCommand> p{mode, feed(at(0, 0), at(19, 0), 1200, PathMode::Continuous, q)};
+    if (as_lines) {
+      p.push_back(feed(at(19, 0), mid, 1200, PathMode::Continuous, q));
+      p.push_back(feed(mid, at(20, 1), 1200, PathMode::Continuous, q));
+    } else {
+      CanonCommand corner = arc(at(19, 0), at(20, 1), 19, 1, 1, 1200);
+      corner.state.path_tolerance = q;
+      p.push_back(corner);
+    }
+    for (int i = 0; i < 64; ++i) // a zigzag up the side: every point a corner
+      p.push_back(feed(at(20 + (i % 2), 1 + i), at(20 + ((i + 1) % 2), 2 + i), 1200,
+                       PathMode::Continuous, q));
+    return p;
+  };
+  const Timeline arcs = plan(program(false), linuxcnc_machine());
+  const Timeline lines = plan(program(true), linuxcnc_machine());
+  CHECK(arcs.total_s == doctest::Approx(lines.total_s).epsilon(1e-3));
+  // The arc's time is the two lines' (the two halves of the same path).
+  CHECK(arcs.commands[2].duration_s ==
+        doctest::Approx(lines.commands[2].duration_s + lines.commands[3].duration_s).epsilon(1e-3));
+  CHECK(arcs.commands[2].duration_s == doctest::Approx(std::numbers::pi / 2 / 20).epsilon(0.05));
+  double sum = 0;
+  for (const TimedCommand& c : arcs.commands)
+    sum += c.duration_s;
+  CHECK(sum == doctest::Approx(arcs.total_s));
+}
+
 TEST_CASE("a move whose rest runs in the next blend arc keeps that part of the arc's time") {
   // 0.15 mm moves at F3000 turning by a degree or two: the last few servo cycles of each move
   // run in the blend arc after it. LinuxCNC lists such a move with no time; ncjoule charges it

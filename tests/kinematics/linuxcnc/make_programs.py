@@ -115,6 +115,25 @@ def naive_cam():
     return out
 
 
+def split_arcs():
+    """G64 P with small corner arcs: an arc's middle joins the lines before it and its end does
+    not, so the naive-CAM detector sends its two halves in two straight moves."""
+    out = ["(splitarcs: arcs split between two naive-CAM moves)", "G21 G17 G90 G94", "G0 X0 Y0 Z0",
+           "G64 P0.5", "F1200"]
+    for k, r in enumerate((1.0, 0.6, 1.0)):
+        w, h = 20 - 4 * k, 12 - 2 * k
+        out += [f"G1 X{fmt(w - r)} Y0", f"G3 X{fmt(w)} Y{fmt(r)} I0 J{fmt(r)}",
+                f"G1 X{fmt(w)} Y{fmt(h - r)}", f"G3 X{fmt(w - r)} Y{fmt(h)} I{fmt(-r)} J0",
+                f"G1 X{fmt(r)} Y{fmt(h)}", f"G3 X0 Y{fmt(h - r)} I0 J{fmt(-r)}",
+                f"G1 X0 Y{fmt(r)}", f"G3 X{fmt(r)} Y0 I{fmt(r)} J0"]
+        if k == 1:
+            out.append("F2400")
+    # An S of two small arcs after a line, then lines again.
+    out += ["G1 X10 Y0", "G3 X11 Y1 I0 J1", "G2 X12 Y2 I1 J0", "G1 X12 Y8", "G1 X0 Y8",
+            "G0 Z5", "M2"]
+    return out
+
+
 def stops():
     out = ["(stops: codes that empty the queue, and some that do not)", "G21 G17 G90 G94 G64",
            "G0 X0 Y0 Z0", "G1 X10 F1200", "X20 Y2", "M7", "X30 Y0", "X40 Y2", "M9", "X50 Y0",
@@ -141,7 +160,7 @@ def short():
 
 
 PROGRAMS = {"corners": corners, "surface": surface, "engrave": engrave, "arcs": arcs,
-            "naivecam": naive_cam, "stops": stops, "short": short}
+            "naivecam": naive_cam, "splitarcs": split_arcs, "stops": stops, "short": short}
 
 
 def main():

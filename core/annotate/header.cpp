@@ -238,9 +238,8 @@ void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>&
 
 } // namespace
 
-std::vector<std::string> header_lines(const Estimate& estimate, const MachineProfile& machine,
-                                      const WriteStyle& style,
-                                      const std::function<int(int)>& line_in_output) {
+std::vector<std::string> summary_lines(const Estimate& estimate, const MachineProfile& machine,
+                                       const WriteStyle& style) {
   std::vector<std::string> lines;
   std::vector<Group> groups{totals(estimate), time_split(estimate), components(estimate)};
   for (Group& g : operations(estimate))
@@ -249,6 +248,12 @@ std::vector<std::string> header_lines(const Estimate& estimate, const MachinePro
     groups.push_back(std::move(g));
   for (const Group& g : groups)
     wrap(g, style, lines);
+  return lines;
+}
+
+std::vector<std::string> warning_lines(const Estimate& estimate, const WriteStyle& style,
+                                       const std::function<int(int)>& line_in_output) {
+  std::vector<std::string> lines;
   // One line per warning, cut to the line length: a warning is read, not parsed.
   for (std::string text : warning_texts(estimate, line_in_output)) {
     std::string content = "NCJ WARN " + text;

@@ -16,7 +16,7 @@ bool is_global(std::string_view name) {
 }
 } // namespace
 
-Parameters::Parameters() : numbered_(param::kCount + 1, 0.0) {
+Parameters::Parameters() : numbered_(std::make_unique<double[]>(param::kCount + 1)) {
   numbered_[param::kCoordSystem] = 1;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -51,7 +52,8 @@ private:
     double saved_locals[31] = {};
     std::unordered_map<std::string, double> named;
   };
-  std::vector<double> numbered_;
+  // Zeroed in one go (a memset): a fresh interpreter is made for every program and every check.
+  std::unique_ptr<double[]> numbered_;
   std::unordered_map<std::string, double> globals_;
   std::vector<Scope> scopes_;
   SystemLookup system_;

@@ -40,17 +40,15 @@ for target in "${targets[@]}"; do
     find "$root/samples" -type f \( -name '*.ngc' -o -name '*.nc' \) -size -16k \
       -exec cp -f {} "$seeds/" \; 2>/dev/null || true
   fi
-  # Short inputs keep the targets fast. On one core, inputs a second: the lexer about 1,000, the
-  # interpreter 1,500, profiles 24,000, the pipeline about 390 (it interprets twice, plans,
-  # removes, integrates power, annotates and strips every input: run two for 1M in 25 minutes).
-  # The pipeline gets a longer timeout: a short loop can be a legitimately long program
-  # (thousands of samples per move to plan, remove and integrate under the sanitizers).
+  # Short inputs keep the targets fast: the pipeline interprets twice, plans, removes,
+  # integrates power, annotates and strips every input, so it reads the shortest. It gets a
+  # longer timeout: a short loop can be a legitimately long program.
   timeout=10
   case "$target" in
     lexer) max_len=4096 ;;
     profile) max_len=2048 ;;
     interpreter) max_len=1024 ;;
-    *) max_len=384 timeout=60 ;;
+    *) max_len=256 timeout=60 ;;
   esac
   limit=(-max_total_time="$seconds")
   [ -n "${RUNS:-}" ] && limit=(-runs="$RUNS")

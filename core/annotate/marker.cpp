@@ -1,5 +1,6 @@
 #include "marker.hpp"
 
+#include <array>
 #include <cstdint>
 
 namespace ncjoule::annotation {
@@ -11,8 +12,29 @@ constexpr std::size_t kSumLength = 6;
 // Crockford's base 32: no I, L, O, U, so that a sum never reads as a word or as 0/1.
 constexpr std::string_view kSumAlphabet = "0123456789ABCDEFGHJKMNPQRSTVWXYZ";
 
+// Byte tables: every annotated line's bytes pass through these (to write, check and strip it),
+// and a table look-up is one load where the comparisons are a branch each.
+using ByteTable = std::array<unsigned char, 256>;
+
+constexpr ByteTable make_upper_table() {
+  ByteTable t{};
+  for (int c = 0; c < 256; ++c)
+    t[c] = static_cast<unsigned char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
+  return t;
+}
+constexpr ByteTable kUpper = make_upper_table();
+
+constexpr ByteTable make_safe_table() {
+  ByteTable t{};
+  for (int c = 0; c < 256; ++c)
+    t[c] = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == ' ' ||
+           c == '.' || c == ',' || c == '=' || c == '_' || c == '-';
+  return t;
+}
+constexpr ByteTable kSafe = make_safe_table();
+
 char upper(char c) {
-  return (c >= 'a' && c <= 'z') ? char(c - 'a' + 'A') : c;
+  return static_cast<char>(kUpper[static_cast<unsigned char>(c)]);
 }
 
 bool equal_no_case(std::string_view a, std::string_view b) {
@@ -46,8 +68,7 @@ CommentStyle comment_style(const Dialect& dialect) {
 }
 
 bool is_safe_char(char c) {
-  return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == ' ' ||
-         c == '.' || c == ',' || c == '=' || c == '_' || c == '-';
+  return kSafe[static_cast<unsigned char>(c)] != 0;
 }
 
 std::string checksum(std::string_view content, MarkKind kind) {
@@ -85,8 +106,13 @@ std::size_t match_marked_comment(std::string_view text, std::size_t pos, MarkKin
   if (end >= text.size() || text[end] != ' ') return 0;
   while (end < text.size() && is_safe_char(text[end]))
     ++end;
-  for (std::size_t k = begin + kMarker.size(); k + kSumKey.size() + kSumLength <= end; ++k) {
-    if (!equal_no_case(text.substr(k, kSumKey.size()), kSumKey)) continue;
+  const std::size_t sum_size = kSumKey.size() + kSumLength;
+  // A parenthesis comment's sum ends where its safe run does: one place to look. A ';' comment's
+  // may be followed by more text: look at every " CK=" in the run.
+  std::size_t k = begin + kMarker.size();
+  if (paren && end >= k + sum_size) k = end - sum_size;
+  for (; k + sum_size <= end; ++k) {
+    if (text[k] != ' ' || !equal_no_case(text.substr(k, kSumKey.size()), kSumKey)) continue;
     const std::size_t sum_end = k + kSumKey.size() + kSumLength;
     if (paren && (sum_end != end || end >= text.size() || text[end] != ')')) continue;
     if (!paren && sum_end < text.size() && is_safe_char(text[sum_end]) && text[sum_end] != ' ')

@@ -122,7 +122,9 @@ Planner::Impl::Impl(const MachineProfile& machine, const PlanOptions& o, Sink s)
     : k(machine.kinematics), options(o), sink(std::move(s)), events(machine.kinematics) {
   if (k.junction_rule == JunctionRule::LinuxCnc29)
     linuxcnc_path.emplace(k, items, [this](std::size_t command, const linuxcnc::Charge& charge) {
-      waiting[command - first_waiting].plan =
+      // at(): a charge for a command already sent would be a fault of the path builder; it
+      // throws (the estimate fails with an error) rather than write where the command was.
+      waiting.at(command - first_waiting).plan =
           MovePlan{MoveTiming::Chained, charge.count, charge.first, charge.begin, charge.end, true};
     });
 }

@@ -11,9 +11,11 @@ void plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
   const std::size_t end = items.size();
   if (from >= end) return;
   // Backward, as if the path stopped after the last item: the fastest each item may enter and
-  // still reach the speed the items after it allow. A later item can only raise these speeds, so
-  // an item whose entry is held by its own cap keeps it whatever follows, and so does everything
-  // before it.
+  // still reach the speed the items after it allow. An item whose entry is held by its own cap,
+  // whatever speed it may yet have to leave at, keeps it whatever follows, and so does
+  // everything before it. Without jerk a later item can only raise the exit speeds, so the cap
+  // need only be within reach of the present exit; with jerk the reach is not monotone in the
+  // exit speed (velocity_profile.hpp), so the cap must be within reach of any.
   std::size_t fixed = from; // the highest such item found, if above `from`
   double next_entry = 0;
   for (std::size_t i = end; i-- > from;) {
@@ -23,7 +25,9 @@ void plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
         std::min(i > from ? items[i - 1].junction_after : front.junction_before, m.vmax);
     const double reach = reachable_speed(m.exit, m.length, m.accel, m.jerk);
     m.entry = std::min(cap, reach);
-    if (fixed == from && i > from && cap <= reach) fixed = i;
+    if (fixed == from && i > from && cap <= reach &&
+        (m.jerk <= 0 || cap <= lowest_reachable_speed(m.length, m.accel, m.jerk)))
+      fixed = i;
     next_entry = m.entry;
   }
   const std::size_t final_end = at_end ? end : fixed;

@@ -52,6 +52,22 @@ double reachable_speed(double v0, double length, double accel, double jerk) {
   return v0 + 0.5 * (-b + std::sqrt(b * b - 4 * c));
 }
 
+double lowest_reachable_speed(double length, double accel, double jerk) {
+  double lowest = reachable_speed(0, length, accel, jerk);
+  if (jerk <= 0 || !(length > 0)) return lowest;
+  // reachable_speed falls, then rises, with v0 in each regime; the lowest is at a turning point
+  // or where the regimes meet. Turning points: without full acceleration where dv = 2 v0, i.e.
+  // 32 v0^3 = length^2 jerk; with it at v0 = accel^2 / (2 jerk). The regimes meet where
+  // (2 v0 + accel^2 / jerk) accel / jerk = length.
+  const double dv_full = accel * accel / jerk;
+  const double turn_partial = std::cbrt(length * length * jerk / 32);
+  const double turn_full = dv_full / 2;
+  const double regimes_meet = std::max(0.0, (length * jerk / accel - dv_full) / 2);
+  for (double v0 : {turn_partial, turn_full, regimes_meet})
+    lowest = std::min(lowest, reachable_speed(v0, length, accel, jerk));
+  return lowest;
+}
+
 VelocityProfile VelocityProfile::between(double v0, double v1) {
   VelocityProfile p;
   p.entry_ = std::max(0.0, v0);

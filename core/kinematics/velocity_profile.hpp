@@ -16,6 +16,11 @@ double speed_change_distance(double v0, double v1, double accel, double jerk);
 // The highest speed reachable from v0 (or the highest from which v0 is reachable when
 // slowing down) within `length`.
 double reachable_speed(double v0, double length, double accel, double jerk);
+// The lowest reachable_speed() over `length` from any v0 >= 0. Without jerk it is the speed
+// reached from rest. With jerk it is lower: a ramp that starts and ends at zero acceleration
+// covers its distance sooner from a higher speed and so gains less, and reaching from 7 mm/s can
+// end below reaching from rest (0.5 mm at 10,000 mm/s^3: 13.2 against 13.6 mm/s).
+double lowest_reachable_speed(double length, double accel, double jerk);
 
 class VelocityProfile {
 public:

@@ -71,3 +71,21 @@ TEST_CASE("reachable speed is the inverse of the ramp distance") {
         CHECK(speed_change_distance(v0, v1, 1000, jerk) == doctest::Approx(length).epsilon(1e-9));
       }
 }
+
+TEST_CASE("with jerk the reachable speed is not monotone in the start speed; its lowest is found") {
+  // 0.5 mm at 10,000 mm/s^3: from rest a ramp gains 13.6 mm/s, from 7.07 mm/s only 6.1.
+  CHECK(reachable_speed(0, 0.5, 1000, 10000) > reachable_speed(7.066, 0.5, 1000, 10000) + 0.3);
+  for (const double jerk : {0.0, 2000.0, 10000.0, 1e6})
+    for (const double length : {0.05, 0.5, 5.0, 50.0}) {
+      CAPTURE(jerk);
+      CAPTURE(length);
+      const double lowest = lowest_reachable_speed(length, 1000, jerk);
+      double swept = reachable_speed(0, length, 1000, jerk);
+      for (double v0 = 0; v0 <= 400; v0 += 0.01) {
+        const double v = reachable_speed(v0, length, 1000, jerk);
+        CHECK(lowest <= v * (1 + 1e-12));
+        swept = std::min(swept, v);
+      }
+      CHECK(lowest == doctest::Approx(swept).epsilon(1e-6));
+    }
+}

@@ -166,6 +166,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   PlanOptions plan_options;
   if (removal && removal->ready()) plan_options.max_sample_step_mm = removal->sample_step_mm();
   plan_options.max_samples_per_move = options.max_samples_per_move;
+  plan_options.look_ahead_batch = options.look_ahead_batch;
   EstimateOptions folding = options;
   for (const auto& [number, tool] : e.tools)
     if (tool.flutes > 0) folding.energy.flutes[number] = tool.flutes;

@@ -8,6 +8,7 @@
 //  3. For each command in turn, once its speeds are final: a velocity profile (or one per
 //     stretch it is charged with), the running clock and the sampled path; then it goes out.
 // Memory holds the commands and items between the last timed command and the newest one.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <optional>
@@ -93,7 +94,8 @@ struct Planner::Impl {
   Warnings warnings;
   ItemWindow items;
   SpeedPlanFront front;
-  std::size_t next_look_ahead = kLookAheadBatch; // pending items at which to look ahead again
+  std::size_t batch;           // options.look_ahead_batch, at least 1
+  std::size_t next_look_ahead; // pending items at which to look ahead again
   std::deque<WaitingCommand> waiting;
   std::size_t first_waiting = 0; // number of the command at the front of `waiting`
   std::size_t next_number = 0;   // number the next command gets
@@ -115,11 +117,12 @@ struct Planner::Impl {
   double path_speed = 0; // speed of the path at the current point (for zero-length moves)
 
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
-  static constexpr std::size_t kLookAheadBatch = 64;
 };
 
 Planner::Impl::Impl(const MachineProfile& machine, const PlanOptions& o, Sink s)
-    : k(machine.kinematics), options(o), sink(std::move(s)), events(machine.kinematics) {
+    : k(machine.kinematics), options(o), sink(std::move(s)),
+      batch(std::max<std::size_t>(o.look_ahead_batch, 1)), next_look_ahead(batch),
+      events(machine.kinematics) {
   if (k.junction_rule == JunctionRule::LinuxCnc29)
     linuxcnc_path.emplace(k, items, [this](std::size_t command, const linuxcnc::Charge& charge) {
       // at(): a charge for a command already sent would be a fault of the path builder; it
@@ -142,8 +145,7 @@ void Planner::Impl::add(const CanonCommand& c) {
     // A long stretch with no fixed point: look again only once it has doubled, so that the
     // work stays linear in the program.
     const std::size_t pending = items.size() - front.final_items;
-    next_look_ahead =
-        front.final_items > before ? kLookAheadBatch : std::max(kLookAheadBatch, 2 * pending);
+    next_look_ahead = front.final_items > before ? batch : std::max(batch, 2 * pending);
   }
   send_ready();
 }

@@ -29,13 +29,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ncjoule::EstimateOptions options;
   options.stock = ncjoule::parse_stock_spec("box:0,0,-5,20,20,0");
   options.removal.grid_mm = 2; // coarse: each sample is cheap, the code paths the same
-  options.limits.max_commands = 50;
-  options.limits.max_loop_iterations = 25;
-  options.limits.max_cycle_repeats = 20;
+  options.limits.max_commands = 30;
+  options.limits.max_loop_iterations = 10;
+  options.limits.max_cycle_repeats = 10;
   options.limits.max_arc_turns = 10;
   // X1e5 at F1 is legal and would be sampled finely for minutes; the code paths are the same
   // with few samples.
   options.max_samples_per_move = 16;
+  // The planner's window (commands waiting, items dropped, charges arriving late) reached with a
+  // few moves instead of 64: the use-after-free of an arc split by the naive-CAM detector needed
+  // about 50 before.
+  options.look_ahead_batch = 4;
   const ncjoule::AnnotatedProgram result =
       ncjoule::annotate_program("fuzz.ngc", text, machine(), options);
   const ncjoule::Estimate& e = result.estimate;

@@ -51,10 +51,12 @@ void check_same(const Timeline& streamed, const Timeline& whole) {
 
 } // namespace
 
-TEST_CASE("streamed timing equals whole-program timing on LinuxCNC's nc_files and the samples") {
+TEST_CASE("streamed timing equals whole-program timing on LinuxCNC's nc_files, the samples and "
+          "the planner's test programs") {
   std::vector<fs::path> programs;
   for (const fs::path folder :
-       {fs::path("/usr/share/linuxcnc/ncfiles"), fs::path(NCJOULE_SOURCE_DIR) / "samples"})
+       {fs::path("/usr/share/linuxcnc/ncfiles"), fs::path(NCJOULE_SOURCE_DIR) / "samples",
+        fs::path(NCJOULE_SOURCE_DIR) / "tests" / "kinematics" / "linuxcnc"})
     if (fs::is_directory(folder))
       for (const auto& entry : fs::recursive_directory_iterator(folder))
         if (entry.path().extension() == ".ngc" || entry.path().extension() == ".nc")
@@ -65,6 +67,9 @@ TEST_CASE("streamed timing equals whole-program timing on LinuxCNC's nc_files an
   whole_options.max_sample_step_mm = 0.5;
   PlanOptions stream_options = whole_options;
   stream_options.look_ahead_whole_program = false;
+  // Looking ahead every third move: commands go out sooner, timed the same.
+  PlanOptions eager_options = stream_options;
+  eager_options.look_ahead_batch = 3;
   for (const fs::path& path : programs) {
     CAPTURE(path.string());
     std::ifstream in(path, std::ios::binary);
@@ -73,9 +78,13 @@ TEST_CASE("streamed timing equals whole-program timing on LinuxCNC's nc_files an
     InterpreterOptions options;
     options.max_commands = 2'000'000;
     const Toolpath toolpath = interpret(make_source(path.string(), text.str()), options);
-    for (const MachineProfile& machine : machines())
-      check_same(plan(toolpath.commands, machine, stream_options),
-                 plan(toolpath.commands, machine, whole_options));
+    for (const MachineProfile& machine : machines()) {
+      CAPTURE(machine.kinematics.junction_rule);
+      CAPTURE(machine.kinematics.feed_profile);
+      const Timeline whole = plan(toolpath.commands, machine, whole_options);
+      check_same(plan(toolpath.commands, machine, stream_options), whole);
+      check_same(plan(toolpath.commands, machine, eager_options), whole);
+    }
   }
 }
 

@@ -52,6 +52,8 @@ struct EstimateOptions {
   InterpreterLimits limits;
   // Path samples of one move at most (PlanOptions::max_samples_per_move).
   std::size_t max_samples_per_move = 100'000;
+  // Moves the planner gathers before it looks ahead (PlanOptions::look_ahead_batch).
+  std::size_t look_ahead_batch = 64;
 };
 
 // A job file (TOML) says what a program is cut from and with:

@@ -49,6 +49,10 @@ struct PlanOptions {
   // Time nothing before the end of the program (the look-ahead sees it all at once). The result
   // is the same; tests compare the two.
   bool look_ahead_whole_program = false;
+  // Moves waiting for their speeds before the planner looks ahead again (at least 1). Smaller
+  // sends commands out sooner for more planning work; the result is the same. The fuzz target
+  // sets it small so that a short program reaches the window's every path.
+  std::size_t look_ahead_batch = 64;
 };
 
 // The planner as a stream, for programs of any length: commands go in one at a time and come

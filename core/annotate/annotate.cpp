@@ -177,21 +177,19 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   WriteStyle header_style = style;
   header_style.max_line_length = std::min(style.max_line_length, kHeaderWidth);
   // Where each source line lands in the output: old header lines leave, the new header comes in
-  // at header_at. The summary names no lines; the warnings do, and their number of lines does not
-  // depend on the line numbers they name.
+  // at header_at: the summary's lines, then one line for each warning.
   std::vector<std::string> header;
   if (header_at) {
     header = summary_lines(estimate, machine, header_style);
-    const std::size_t warnings =
-        warning_lines(estimate, header_style, [](int line) { return line; }).size();
+    const std::vector<WarningText> warnings = header_warnings(estimate);
     std::vector<int> output_line(n + 1, 0);
     int next = 1;
     for (std::size_t i = 0; i < n; ++i) {
-      if (i == *header_at) next += static_cast<int>(header.size() + warnings);
+      if (i == *header_at) next += static_cast<int>(header.size() + warnings.size());
       output_line[i] = next;
       if (!lines.old_header[i]) ++next;
     }
-    for (std::string& w : warning_lines(estimate, header_style, [&](int line) {
+    for (std::string& w : warning_lines(warnings, header_style, [&](int line) {
            return line >= 1 && static_cast<std::size_t>(line) <= n ? output_line[line - 1] : line;
          }))
       header.push_back(std::move(w));

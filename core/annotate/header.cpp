@@ -172,18 +172,19 @@ std::string safe_text(std::string_view text) {
   return out;
 }
 
+} // namespace
+
 // What the user should know before trusting the numbers: the tools that were not simulated, and
 // the program's warnings and errors, one line each (the same message once, with its count), the
 // first few of them.
-std::vector<std::string> warning_texts(const Estimate& estimate,
-                                       const std::function<int(int)>& line_in_output) {
+std::vector<WarningText> header_warnings(const Estimate& estimate) {
   constexpr std::size_t kMaxLines = 8;
-  std::vector<std::string> texts;
+  std::vector<WarningText> texts;
   if (!estimate.unsimulated_tools.empty()) {
     std::string tools = "TOOLS NOT SIMULATED";
     for (int t : estimate.unsimulated_tools)
       tools += " T" + std::to_string(t);
-    texts.push_back(tools + " - their moves remove nothing, describe them with --tool");
+    texts.push_back({tools + " - their moves remove nothing, describe them with --tool", 0, ""});
   }
   std::vector<std::pair<const Diagnostic*, int>> distinct; // first of each message, count
   for (const Diagnostic& d : estimate.diagnostics) {
@@ -199,18 +200,19 @@ std::vector<std::string> warning_texts(const Estimate& estimate,
   std::size_t shown = 0;
   for (const auto& [d, count] : distinct) {
     if (texts.size() >= kMaxLines) break;
-    std::string text = d->severity == Severity::Error ? "ERROR " : "";
-    if (d->line > 0) text += "L" + std::to_string(line_in_output(d->line)) + " ";
-    text += safe_text(d->message);
-    if (count > 1) text += " - " + std::to_string(count) + " times";
-    texts.push_back(text);
+    std::string tail = safe_text(d->message);
+    if (count > 1) tail += " - " + std::to_string(count) + " times";
+    texts.push_back({d->severity == Severity::Error ? "ERROR " : "", d->line, std::move(tail)});
     ++shown;
   }
   if (shown < distinct.size())
-    texts.push_back("and " + std::to_string(distinct.size() - shown) +
-                    " more - ncjoule estimate lists them all");
+    texts.push_back({"and " + std::to_string(distinct.size() - shown) +
+                         " more - ncjoule estimate lists them all",
+                     0, ""});
   return texts;
 }
+
+namespace {
 
 std::size_t comment_length(std::size_t content_length, const WriteStyle& style) {
   return style.comment.open.size() + content_length + 4 + 6 + style.comment.close.size();
@@ -251,12 +253,15 @@ std::vector<std::string> summary_lines(const Estimate& estimate, const MachinePr
   return lines;
 }
 
-std::vector<std::string> warning_lines(const Estimate& estimate, const WriteStyle& style,
+std::vector<std::string> warning_lines(const std::vector<WarningText>& warnings,
+                                       const WriteStyle& style,
                                        const std::function<int(int)>& line_in_output) {
   std::vector<std::string> lines;
   // One line per warning, cut to the line length: a warning is read, not parsed.
-  for (std::string text : warning_texts(estimate, line_in_output)) {
-    std::string content = "NCJ WARN " + text;
+  for (const WarningText& w : warnings) {
+    std::string content = "NCJ WARN " + w.head;
+    if (w.line > 0) content += "L" + std::to_string(line_in_output(w.line)) + " ";
+    content += w.tail;
     while (comment_length(content.size(), style) > style.max_line_length && !content.empty())
       content.pop_back();
     while (!content.empty() && content.back() == ' ')

@@ -18,10 +18,21 @@ namespace ncjoule::annotation {
 std::vector<std::string> summary_lines(const Estimate& estimate, const MachineProfile& machine,
                                        const WriteStyle& style);
 
-// The header's warning lines, one per distinct warning, after the summary. A warning names the
-// line it concerns as `line_in_output` maps it (1-based source line to 1-based line of the
-// annotated file); how many lines there are does not depend on it.
-std::vector<std::string> warning_lines(const Estimate& estimate, const WriteStyle& style,
+// One warning of the header: `head`, then the line it concerns (if any) as "L<n> ", then `tail`.
+struct WarningText {
+  std::string head;
+  int line = 0; // 1-based source line; 0: none
+  std::string tail;
+};
+
+// What the header warns of: the tools not simulated, then each distinct warning and error of the
+// program with its count, the first few of them.
+std::vector<WarningText> header_warnings(const Estimate& estimate);
+
+// The header's warning lines, one per warning, after the summary, each naming its line as
+// `line_in_output` maps it (1-based source line to 1-based line of the annotated file).
+std::vector<std::string> warning_lines(const std::vector<WarningText>& warnings,
+                                       const WriteStyle& style,
                                        const std::function<int(int)>& line_in_output);
 
 } // namespace ncjoule::annotation

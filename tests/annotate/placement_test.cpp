@@ -202,3 +202,22 @@ TEST_CASE("the header splits the time and has one line per operation; inch progr
   CHECK(inch.find(" VOL_IN3=") != std::string::npos);
   CHECK(inch.find(" MRR_IN3_MIN=") != std::string::npos);
 }
+
+TEST_CASE("a header warning names its block's line in the annotated file, past the header") {
+  const std::string out = annotated("%\nG21 G90\nG0 X0 Y0 Z5\nG1 X10 F0\nG1 Y10 F0\nM2\n%\n");
+  const std::vector<std::string> lines = lines_of(out);
+  int warned = 0;
+  for (const std::string& line : lines) {
+    const std::size_t at = line.find("NCJ WARN L");
+    if (at == std::string::npos) continue;
+    const int named = std::stoi(line.substr(at + 10));
+    CAPTURE(line);
+    REQUIRE(named >= 1);
+    REQUIRE(static_cast<std::size_t>(named) <= lines.size());
+    // The named line of the output is the first block the warning concerns: "G1 X10 F0".
+    CHECK(lines[named - 1].rfind("G1 X10 F0", 0) == 0);
+    ++warned;
+  }
+  CHECK(warned == 1);
+  CHECK(lines[4].rfind("(NCJ", 0) == 0); // the header sits between the % line and the program
+}

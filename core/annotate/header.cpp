@@ -161,9 +161,7 @@ Group legend() {
 std::string safe_text(std::string_view text) {
   std::string out;
   for (char c : text) {
-    const bool keep = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                      c == '.' || c == ',' || c == '-' || c == '=' || c == '_';
-    const char put = keep ? c : ' ';
+    const char put = is_safe_char(c) ? c : ' ';
     if (put == ' ' && (out.empty() || out.back() == ' ')) continue;
     out += put;
   }

@@ -136,14 +136,13 @@ void Interpreter::keywords(const Block& b, BlockValues& v,
       const bool add = k.name == "arot";
       if (!add) frame_rotation_deg_ = 0;
       double angle = 0;
-      bool given = false;
-      if (v.has('z')) angle = *v['z'], given = true;
+      if (v.has('z')) angle = *v['z'];
       for (const Keyword& r : b.keywords)
         if (r.name == "rpl") {
           double value;
           std::string err;
           std::size_t off = 0;
-          if (evaluate(r.args, params_, value, err, off)) angle = value, given = true;
+          if (evaluate(r.args, params_, value, err, off)) angle = value;
         }
       if (v.has('x') || v.has('y'))
         warning(k.column, name + " about X or Y (a tilted plane) is not modelled: ignored");

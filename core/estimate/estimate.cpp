@@ -26,8 +26,8 @@ bool holds_error(const std::vector<Diagnostic>& diagnostics) {
                      [](const Diagnostic& d) { return d.severity == Severity::Error; });
 }
 
-void add_diagnostics(Estimate& e, const std::vector<Diagnostic>& more, const std::string& file) {
-  for (Diagnostic d : more) {
+void add_diagnostics(Estimate& e, std::vector<Diagnostic> more, const std::string& file) {
+  for (Diagnostic& d : more) {
     if (e.diagnostics.size() >= kMaxDiagnostics &&
         (d.severity != Severity::Error || holds_error(e.diagnostics))) {
       ++e.diagnostics_dropped;
@@ -116,14 +116,14 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   // 1. The first pass. Stage times go to the log (-v): the benchmarks read them.
   auto t = Clock::now();
   ProgramScan scan;
-  const InterpretResult run =
+  InterpretResult run =
       interpret(source, interpreter, [&scan](const CanonCommand& c) { scan.add(c); });
   e.dialect = run.dialect;
   e.dialect_origin = run.dialect_origin;
   e.dialect_reason = run.dialect_reason;
   e.blocks = run.blocks;
   e.commands = run.commands;
-  add_diagnostics(e, run.diagnostics, source.path);
+  add_diagnostics(e, std::move(run.diagnostics), source.path);
   logger().info("scan: {} blocks, {} commands in {:.3f} s", run.blocks, scan.commands,
                 seconds_since(t));
   if (options.progress) options.progress(0.1);
@@ -133,7 +133,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   scan.tool_comments.dialect = e.dialect;
   e.inch = scan.tool_comments.inch;
   std::map<int, Tool> described = described_tools(source, scan.tool_comments, options, found);
-  add_diagnostics(e, found, source.path);
+  add_diagnostics(e, std::move(found), source.path);
   std::unique_ptr<RemovalSimulator> removal;
   if (options.simulate_removal) {
     ToolAssignment assignment = assign_tools(
@@ -141,7 +141,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
         source.path);
     e.tools = std::move(assignment.tools);
     e.unsimulated_tools = std::move(assignment.unsimulated);
-    add_diagnostics(e, assignment.diagnostics, source.path);
+    add_diagnostics(e, std::move(assignment.diagnostics), source.path);
     std::map<int, Tool> used;
     for (const auto& [number, _] : scan.tools.first_move)
       if (auto it = e.tools.find(number); it != e.tools.end()) used.insert(*it);
@@ -176,7 +176,8 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   // Interpret again, plan and fold as one stream: each command goes through as soon as the
   // planner has timed it, so memory holds the look-ahead window, not the program.
   InterpreterOptions again = interpreter;
-  again.dialect = e.dialect; // as the first pass chose it
+  again.dialect = e.dialect;      // as the first pass chose it
+  again.keep_diagnostics = false; // the first pass gave them
   std::size_t streamed = 0;
   try {
     Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& timed) {

@@ -72,12 +72,17 @@ bool Interpreter::system_parameter(std::string_view name, double& value) const {
 constexpr std::size_t kMaxDiagnostics = 1000;
 
 void Interpreter::report(Severity severity, int column, std::string message) {
+  if (severity == Severity::Error) error_reported_ = true;
+  if (!options_.keep_diagnostics) return;
   // Past the cap only one more error is kept, so that the run still fails as it must; memory
   // and output stay bounded whatever the program repeats.
   if (result_.diagnostics.size() > kMaxDiagnostics &&
       (severity != Severity::Error || error_past_cap_))
     return;
-  if (!reported_.emplace(current_line_, column, message).second) return;
+  const ReportedView key(current_line_, column, message);
+  const auto at = reported_.lower_bound(key);
+  if (at != reported_.end() && !ReportedOrder{}(key, *at)) return; // given before
+  reported_.emplace_hint(at, current_line_, column, message);
   if (result_.diagnostics.size() == kMaxDiagnostics) {
     result_.diagnostics.push_back({Severity::Warning, source_.path, current_line_ + 1, 0,
                                    "too many diagnostics: the rest are not shown"});
@@ -205,10 +210,12 @@ InterpretResult Interpreter::run() {
     current_call_line_ = frames_.empty() ? int(pc_) : frames_.front().call_line;
     next_pc_ = pc_ + 1;
     lex_line(source_.line_text(pc_), dialect_, block_);
-    for (Diagnostic d : block_.warnings)
+    for (Diagnostic& d : block_.warnings)
       report(d.severity, d.column, std::move(d.message));
     if (!block_.errors.empty()) {
-      for (Diagnostic d : block_.errors) {
+      error_reported_ = true;
+      for (Diagnostic& d : block_.errors) {
+        if (!options_.keep_diagnostics) break;
         d.file = source_.path;
         d.line = current_line_ + 1;
         result_.diagnostics.push_back(std::move(d));
@@ -252,9 +259,7 @@ InterpretResult Interpreter::run() {
     }
     pc_ = next_pc_;
   }
-  if (!finished_ && !result_.diagnostics.empty() &&
-      std::any_of(result_.diagnostics.begin(), result_.diagnostics.end(),
-                  [](const Diagnostic& d) { return d.severity == Severity::Error; })) {
+  if (!finished_ && error_reported_) {
     result_.completed = false;
   } else if (!finished_) {
     current_line_ = n ? int(n - 1) : 0;
@@ -262,7 +267,7 @@ InterpretResult Interpreter::run() {
     result_.completed = true;
   }
   result_.commands = command_count_;
-  return result_;
+  return std::move(result_); // run() is called once
 }
 
 } // namespace ncjoule::detail

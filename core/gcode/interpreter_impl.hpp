@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <tuple>
 #include <unordered_map>
 #include <vector>
@@ -198,7 +199,20 @@ private:
   std::optional<std::unordered_map<long, std::size_t>> n_numbers_; // Haas M97 targets
   std::size_t loop_iterations_ = 0;                                // backward jumps of loops
   std::size_t blocks_run_ = 0;
-  std::set<std::tuple<int, int, std::string>> reported_; // diagnostics already given
+  // Diagnostics already given, by line, column and message; looked up by a view of the message,
+  // so that a repeat, as a loop gives them, costs no copy.
+  using ReportedView = std::tuple<int, int, std::string_view>;
+  struct ReportedOrder {
+    using is_transparent = void;
+    static ReportedView view(const ReportedView& v) { return v; }
+    static ReportedView view(const std::tuple<int, int, std::string>& k) {
+      return {std::get<0>(k), std::get<1>(k), std::get<2>(k)};
+    }
+    template <class A, class B> bool operator()(const A& a, const B& b) const {
+      return view(a) < view(b);
+    }
+  };
+  std::set<std::tuple<int, int, std::string>, ReportedOrder> reported_;
   void report(Severity severity, int column, std::string message);
   std::map<std::size_t, long> top_repeat_counters_; // o-word repeat loops outside calls
 
@@ -222,6 +236,7 @@ private:
   bool retract_to_r_ = true;      // G99
   double naivecam_tolerance_ = 0; // G64 Q (else P): restored after canned cycles
   bool error_past_cap_ = false;   // an error was kept past the diagnostics cap
+  bool error_reported_ = false;   // an error, kept or not (options_.keep_diagnostics)
   int cutter_comp_ = 40;
   bool arc_offsets_reversed_ = false;          // I/J/K read from the centre to the start
   std::size_t arcs_fitting_only_standard_ = 0; // I/J/K arcs that fit only the standard way

@@ -53,6 +53,35 @@ TEST_CASE("a program without M2/M30 warns at its last line") {
   CHECK(p.result.completed);
 }
 
+TEST_CASE("a loop gives each of its blocks' diagnostics once, whatever the passes") {
+  const Toolpath p = run("G21\n#1=0\no100 while [#1 LT 5]\nG0 G300 X#1\nM200\n#1=[#1+1]\n"
+                         "o100 endwhile\nM2\n");
+  const auto w = with_severity(p, Severity::Warning);
+  REQUIRE(w.size() == 2);
+  CHECK(w[0].line == 4);
+  CHECK(w[0].message.find("G300") != std::string::npos);
+  CHECK(w[1].line == 5);
+  CHECK(moves(p).size() == 5);
+}
+
+TEST_CASE("a pass that keeps no diagnostics gives the same commands and the same ending") {
+  for (const std::string text :
+       {std::string("G21\nG0 G300 X1\nG1 X2 F100\nM2\n"),
+        std::string("G21\nG0 X1\nG1.55 X4\nG0 X5\n"), std::string("G21\nG0 X1\n")}) {
+    const SourceFile source = make_source("test.ngc", text);
+    InterpreterOptions options;
+    options.dialect = find_dialect("linuxcnc");
+    const Toolpath kept = interpret(source, options);
+    options.keep_diagnostics = false;
+    const Toolpath quiet = interpret(source, options);
+    CAPTURE(text);
+    CHECK_FALSE(kept.result.diagnostics.empty());
+    CHECK(quiet.result.diagnostics.empty());
+    CHECK(canon(quiet) == canon(kept));
+    CHECK(quiet.result.completed == kept.result.completed);
+  }
+}
+
 TEST_CASE("dwell units per dialect") {
   auto dwell = [](const std::string& text, const std::string& dialect) {
     const auto d = of_kind(run(text, dialect), CanonKind::Dwell);

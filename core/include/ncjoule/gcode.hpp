@@ -279,6 +279,9 @@ struct InterpreterOptions : InterpreterLimits {
   ToolTable tools;
   bool block_delete = false; // honour '/' (skip those blocks)
   bool optional_stop = true; // M1 stops (only recorded; time counts zero)
+  // false: no diagnostics are collected (a second pass over a program whose first pass gave
+  // them); the commands are the same.
+  bool keep_diagnostics = true;
 };
 
 struct InterpretResult {

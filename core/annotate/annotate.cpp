@@ -10,7 +10,6 @@
 #include "line_layout.hpp"
 #include "marker.hpp"
 #include "ncjoule/annotate.hpp"
-#include "ncjoule/text.hpp"
 #include "number_format.hpp"
 #include "strip_line.hpp"
 
@@ -134,9 +133,11 @@ std::vector<Field> block_fields(const LineSummary* summary, double end_s,
 std::string block_comment(std::vector<Field> fields, std::size_t room, const WriteStyle& style) {
   while (true) {
     std::string content = "NCJ";
-    for (const Field& f : fields)
-      content += ' ' + f.text;
-    if (style.upper_case) content = to_upper(content);
+    content.reserve(room);
+    for (const Field& f : fields) {
+      content += ' ';
+      content += f.text;
+    }
     std::string comment = marked_comment(content, MarkKind::Inline, style.comment);
     if (comment.size() + 1 <= room) return comment;
     auto last = std::max_element(fields.begin(), fields.end(), [](const Field& a, const Field& b) {
@@ -156,7 +157,6 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   const std::size_t n = source.lines.size();
   WriteStyle style;
   style.comment = comment_style(estimate.dialect);
-  style.upper_case = estimate.dialect.upper_case_comments;
   style.max_line_length = options.max_line_length            ? options.max_line_length
                           : estimate.dialect.max_line_length ? estimate.dialect.max_line_length
                                                              : kDefaultMaxLineLength;

@@ -17,13 +17,26 @@ struct Group {
   std::vector<std::string> fields;
 };
 
-std::string field(std::string_view key, const std::string& value) {
-  return std::string(key) + "=" + value;
+// A group with room for its fields: the header is built for every program, and each growth of
+// the list moves every field.
+Group make_group(std::string label) {
+  Group g{std::move(label), {}};
+  g.fields.reserve(16);
+  return g;
+}
+
+std::string field(std::string_view key, std::string_view value) {
+  std::string out;
+  out.reserve(key.size() + 1 + value.size());
+  out += key;
+  out += '=';
+  out += value;
+  return out;
 }
 
 Group totals(const Estimate& estimate) {
   const EnergyResult& e = estimate.energy;
-  Group g{"TOTAL", {}};
+  Group g = make_group("TOTAL");
   g.fields.push_back(field("T", format_duration(estimate.time_s)));
   g.fields.push_back(field("E", format_si(e.energy_j, "J")));
   g.fields.push_back(field("E_KWH", format_significant(e.energy_j / 3.6e6, 4, 6)));
@@ -50,7 +63,7 @@ Group totals(const Estimate& estimate) {
 // changes, dwells and spindle ramps.
 Group time_split(const Estimate& estimate) {
   const TimeSplit& t = estimate.time;
-  Group g{"TIME", {}};
+  Group g = make_group("TIME");
   g.fields.push_back(field("RAPID", format_duration(t.rapid_s)));
   g.fields.push_back(field("CUT", format_duration(t.cutting_s())));
   g.fields.push_back(field("AIR", estimate.removal ? format_duration(t.air_cut_s) : "unknown"));
@@ -66,10 +79,11 @@ Group time_split(const Estimate& estimate) {
 constexpr std::size_t kMaxOperations = 40;
 std::vector<Group> operations(const Estimate& estimate) {
   std::vector<Group> out;
+  out.reserve(std::min(estimate.operations.size(), kMaxOperations) + 1);
   const double total = estimate.energy.energy_j;
   for (std::size_t k = 0; k < estimate.operations.size() && k < kMaxOperations; ++k) {
     const OperationSummary& op = estimate.operations[k];
-    Group g{"OP", {}};
+    Group g = make_group("OP");
     g.fields.push_back(field("N", std::to_string(k + 1)));
     g.fields.push_back(field("NAME", safe_token(op.name, 32)));
     g.fields.push_back(field("TOOL", op.tool > 0 ? "T" + std::to_string(op.tool) : "-"));
@@ -92,7 +106,7 @@ std::vector<Group> operations(const Estimate& estimate) {
 }
 
 Group components(const Estimate& estimate) {
-  Group g{"ENERGY", {}};
+  Group g = make_group("ENERGY");
   for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
     std::string key(component_name(PowerComponent(i)));
     key = to_upper(key);
@@ -102,7 +116,7 @@ Group components(const Estimate& estimate) {
 }
 
 Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
-  Group g{"MACHINE", {}};
+  Group g = make_group("MACHINE");
   g.fields.push_back(field("NAME", safe_token(machine.name, 60)));
   const std::string& path = machine.source_path;
   const std::size_t slash = path.find_last_of("/\\");
@@ -121,7 +135,7 @@ Group machine_used(const Estimate& estimate, const MachineProfile& machine) {
 // The constants of the model in use, named by their profile keys (the Pavanaskar ones without
 // their "pavanaskar." prefix): the per-axis KA/KB terms next to Zhou's MRR term.
 Group constants(const PowerConstants& power) {
-  Group g{"CONST", {}};
+  Group g = make_group("CONST");
   std::vector<PowerParameter> used = model_parameters(power.model);
   if (std::find(used.begin(), used.end(), PowerParameter::ToolChange) == used.end())
     used.push_back(PowerParameter::ToolChange);
@@ -141,7 +155,7 @@ Group constants(const PowerConstants& power) {
 }
 
 Group legend() {
-  Group g{"KEYS", {}};
+  Group g = make_group("KEYS");
   for (std::string_view sentence :
        {"T=block time, E=energy, P=mean power, MRR=mean removal rate mm3 per s,",
         "CUM=time at block end, OP OPT OPE=operation from this tool change, its time, energy.",
@@ -160,6 +174,7 @@ Group legend() {
 // Text a controller reads safely inside a comment: letters, digits, space and . , = _ - only.
 std::string safe_text(std::string_view text) {
   std::string out;
+  out.reserve(text.size());
   for (char c : text) {
     const char put = is_safe_char(c) ? c : ' ';
     if (put == ' ' && (out.empty() || out.back() == ' ')) continue;
@@ -178,6 +193,7 @@ std::string safe_text(std::string_view text) {
 std::vector<WarningText> header_warnings(const Estimate& estimate) {
   constexpr std::size_t kMaxLines = 8;
   std::vector<WarningText> texts;
+  texts.reserve(kMaxLines + 1);
   if (!estimate.unsimulated_tools.empty()) {
     std::string tools = "TOOLS NOT SIMULATED";
     for (int t : estimate.unsimulated_tools)
@@ -218,12 +234,12 @@ std::size_t comment_length(std::size_t content_length, const WriteStyle& style) 
 
 void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>& lines) {
   const std::string start = "NCJ " + group.label;
-  std::string content = start;
+  std::string content;
+  content.reserve(style.max_line_length);
+  content = start;
   auto flush = [&] {
-    if (content.size() > start.size()) {
-      if (style.upper_case) content = to_upper(content);
+    if (content.size() > start.size())
       lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
-    }
     content = start;
   };
   for (const std::string& f : group.fields) {
@@ -241,13 +257,15 @@ void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>&
 std::vector<std::string> summary_lines(const Estimate& estimate, const MachineProfile& machine,
                                        const WriteStyle& style) {
   std::vector<std::string> lines;
-  std::vector<Group> groups{totals(estimate), time_split(estimate), components(estimate)};
-  for (Group& g : operations(estimate))
-    groups.push_back(std::move(g));
-  for (Group g : {machine_used(estimate, machine), constants(estimate.power), legend()})
-    groups.push_back(std::move(g));
-  for (const Group& g : groups)
+  lines.reserve(32);
+  wrap(totals(estimate), style, lines);
+  wrap(time_split(estimate), style, lines);
+  wrap(components(estimate), style, lines);
+  for (const Group& g : operations(estimate))
     wrap(g, style, lines);
+  wrap(machine_used(estimate, machine), style, lines);
+  wrap(constants(estimate.power), style, lines);
+  wrap(legend(), style, lines);
   return lines;
 }
 
@@ -264,7 +282,6 @@ std::vector<std::string> warning_lines(const std::vector<WarningText>& warnings,
       content.pop_back();
     while (!content.empty() && content.back() == ' ')
       content.pop_back();
-    if (style.upper_case) content = to_upper(content);
     lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
   }
   return lines;

@@ -63,8 +63,9 @@ std::uint32_t hash(std::string_view content, MarkKind kind) {
 } // namespace
 
 CommentStyle comment_style(const Dialect& dialect) {
-  if (dialect.comment_open == ";" && dialect.comment_close.empty()) return {";", ""};
-  return {"(", ")"};
+  if (dialect.comment_open == ";" && dialect.comment_close.empty())
+    return {";", "", dialect.upper_case_comments};
+  return {"(", ")", dialect.upper_case_comments};
 }
 
 bool is_safe_char(char c) {
@@ -83,14 +84,20 @@ std::string checksum(std::string_view content, MarkKind kind) {
 
 std::string marked_comment(std::string_view content, MarkKind kind, const CommentStyle& style) {
   // Only safe characters, whatever a field holds: one that is not would end the comment for
-  // match_marked_comment, and strip() would leave it in the program.
-  std::string safe(content);
-  for (char& c : safe)
+  // match_marked_comment, and strip() would leave it in the program. Written in place, in one
+  // allocation: every annotated line has one.
+  std::string out;
+  out.reserve(style.open.size() + content.size() + kSumKey.size() + kSumLength +
+              style.close.size());
+  out += style.open;
+  const std::size_t begin = out.size();
+  for (char c : content) {
     if (!is_safe_char(c)) c = '_';
-  std::string out = style.open;
-  out += safe;
+    out += style.upper_case ? upper(c) : c;
+  }
+  const std::string sum = checksum(std::string_view(out).substr(begin), kind);
   out += kSumKey;
-  out += checksum(safe, kind);
+  out += sum;
   out += style.close;
   return out;
 }

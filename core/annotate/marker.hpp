@@ -21,17 +21,17 @@ enum class MarkKind { Inline, Header };
 struct CommentStyle {
   std::string open = "(";
   std::string close = ")"; // empty: the comment runs to the end of the line
+  bool upper_case = false; // the whole comment in upper case (Fanuc family)
 };
 
 // How the annotations of one file are written.
 struct WriteStyle {
   CommentStyle comment;
-  bool upper_case = false;         // the whole comment in upper case (Fanuc family)
   std::size_t max_line_length = 0; // bytes, without the line ending
 };
 
 // The dialect's comment syntax when it is one strip() recognises ("(" ")" or ";"), else the
-// parenthesis form.
+// parenthesis form; in upper case where the dialect's controller wants it.
 CommentStyle comment_style(const Dialect& dialect);
 
 // Letters, digits, space and . , = _ - : what every controller accepts in a comment.
@@ -41,7 +41,8 @@ bool is_safe_char(char c);
 // file an editor or a controller turned to upper case still strips.
 std::string checksum(std::string_view content, MarkKind kind);
 
-// OPEN content " CK=" checksum CLOSE. `content` must start with "NCJ" and hold safe characters.
+// OPEN content " CK=" checksum CLOSE, in upper case if the style says so. `content` must start
+// with "NCJ"; a character that is not safe becomes '_'.
 std::string marked_comment(std::string_view content, MarkKind kind, const CommentStyle& style);
 
 // Length of the marked comment of the given kind that opens at text[pos] ('(' or ';'), or 0 when

@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "marker.hpp"
 #include "ncjoule/annotate.hpp"
 #include "strip_line.hpp"
@@ -28,6 +30,7 @@ bool strip_inline(std::string_view line, std::string& out) {
 
 std::vector<LineSpan> split_lines(std::string_view text) {
   std::vector<LineSpan> lines;
+  lines.reserve(std::count(text.begin(), text.end(), '\n') + 1);
   std::size_t begin = 0;
   while (begin < text.size()) {
     std::size_t i = begin;

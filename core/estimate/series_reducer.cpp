@@ -66,6 +66,9 @@ void SeriesReducer::widen() {
 
 Series SeriesReducer::result() const {
   Series s;
+  const std::size_t most = bucketed_ ? 2 * buckets_.size() : raw_.size();
+  s.t_s.reserve(most);
+  s.value.reserve(most);
   auto put = [&s](const Point& p) {
     s.t_s.push_back(p.t);
     s.value.push_back(p.v);

@@ -50,7 +50,9 @@ struct Block {
   bool block_delete = false;     // line starts with '/'
   bool percent = false;          // a '%' delimiter line
   std::string_view percent_name; // text after '%' on that line (Heidenhain "%NAME G71")
-  bool dollar = false;           // a grbl '$' settings line
+  bool percent_bare = false;     // nothing but '%' and blanks on that line
+  int percent_column = 0;
+  bool dollar = false; // a grbl '$' settings line
   // O-word control flow (LinuxCNC) or O-number program header (Fanuc).
   bool has_o = false;
   std::string o_label;     // "<name>" or digits, lower case

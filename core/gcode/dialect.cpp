@@ -16,6 +16,7 @@ std::vector<Dialect> make_dialects() {
   linuxcnc.name = "linuxcnc";
   linuxcnc.o_word_subroutines = true;
   linuxcnc.retract_to_r_by_default = true; // rs274 starts in G99
+  linuxcnc.percent_alone = true;
   all.push_back(linuxcnc);
 
   Dialect fanuc;

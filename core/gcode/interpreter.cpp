@@ -221,6 +221,15 @@ InterpretResult Interpreter::run() {
         result_.diagnostics.push_back(std::move(d));
       }
       note(0, "block skipped");
+    } else if (block_.percent && dialect_.percent_alone && !block_.percent_bare) {
+      // "% vfd enable", "%(start)", "N10 %": LinuxCNC refuses the line. Taken as the program's
+      // end, it would cut the rest of the program silently; read as a comment, it is said.
+      if (strict_)
+        error(block_.percent_column, "bad character '%': a '%' line holds nothing else");
+      else
+        warning(block_.percent_column,
+                "a '%' line with more on it: LinuxCNC refuses it, other controls start or end "
+                "the program there; read as a comment, the program goes on");
     } else if (block_.percent) {
       // A '%' opens the program; the next one closes it (LinuxCNC, Fanuc tape format). A name
       // after it ("%prog1", "%PM") names the program; Heidenhain's "%NAME G71" gives its units.

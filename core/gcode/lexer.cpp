@@ -4,6 +4,7 @@
 
 #include "block.hpp"
 #include "comment_syntax.hpp"
+#include "ncjoule/text.hpp"
 
 namespace ncjoule::detail {
 namespace {
@@ -58,7 +59,8 @@ void Block::clear() {
   keywords.clear();
   warnings.clear();
   percent_name = {};
-  block_delete = percent = dollar = has_o = false;
+  block_delete = percent = percent_bare = dollar = has_o = false;
+  percent_column = 0;
   o_label.clear();
   o_keyword.clear();
   o_args = {};
@@ -191,6 +193,8 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     // "%NAME G71" (Heidenhain ISO, where G70/G71 give the units).
     b.percent = true;
     b.percent_name = code.substr(p + 1);
+    b.percent_bare = trim(line) == "%";
+    b.percent_column = b.columns[p];
     return;
   }
   if (p < code.size() && code[p] == 'o' && p + 1 < code.size() &&

@@ -78,7 +78,8 @@ def machine_for(name):
 # FreeCAD's posts write for different controllers; tests/gcode/freecad_samples_test.py explains
 # each entry. The dialect each post writes for:
 FREECAD_DIALECT = {"fanuc": "fanuc", "grbl": "grbl", "jtech": "grbl", "marlin": "reprap",
-                   "rrf": "reprap", "smoothie": "reprap", "mach3_mach4": "mach3", "uccnc": "mach3"}
+                   "rrf": "reprap", "smoothie": "reprap", "mach3_mach4": "mach3", "uccnc": "mach3",
+                   "philips": "fanuc"}
 # Posts whose output does not say which tool cuts: estimated with --no-removal.
 FREECAD_NO_REMOVAL = {"grbl", "jtech", "marlin", "rrf", "fablin", "nccad", "philips", "centroid",
                       "comparams"}

@@ -235,6 +235,33 @@ TEST_CASE("reprap firmwares: G4 S in seconds is not a spindle speed, G4 P in ms"
   CHECK(of_kind(p, CanonKind::SpindleSpeed).size() == 1);
 }
 
+TEST_CASE("a '%' line with more on it: refused by LinuxCNC, a comment when no control is named") {
+  // A Fusion post's start file (MPCNC21.cps) writes "% vfd enable" lines as notes. rs274: "Bad
+  // character '%' used"; taken as the closing '%', the program's cuts would vanish unsaid.
+  const std::string text = "%\nG21 G0 X1\n% vfd enable\nG0 X2\n%(end)\nG0 X3\n%\n";
+  const Toolpath linuxcnc = run(text, "linuxcnc");
+  const auto e = with_severity(linuxcnc, Severity::Error);
+  REQUIRE(e.size() == 2);
+  CHECK(e[0].line == 3);
+  CHECK(e[0].column == 1);
+  CHECK(e[1].line == 5);
+
+  const Toolpath unnamed = run(text, "");
+  CHECK(errors(unnamed) == 0);
+  CHECK(with_severity(unnamed, Severity::Warning).size() == 2);
+  REQUIRE(moves(unnamed).size() == 3);
+  CHECK(moves(unnamed).back() ==
+        "STRAIGHT_TRAVERSE(3.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");
+  CHECK(unnamed.result.completed);
+
+  // A Fanuc tape's '%' ends the program whatever follows it on the line.
+  const Toolpath fanuc = run(text, "fanuc");
+  CHECK(errors(fanuc) == 0);
+  CHECK(moves(fanuc).size() == 1);
+  // '%' alone, blanks around it, is the delimiter everywhere.
+  CHECK(moves(run("%\nG21 G0 X1\n  %  \nG0 X2\n", "linuxcnc")).size() == 1);
+}
+
 TEST_CASE("Heidenhain ISO: % header with G71, '*' block ends, absolute arc centres") {
   // Heidenhain TNC User's Manual, DIN/ISO programming: "%NAME G71 *" opens a metric program;
   // I, J are the circle centre in absolute coordinates.

@@ -15,8 +15,11 @@ NCJOULE = os.environ["NCJOULE"]
 ROOT = os.environ["NCJOULE_SOURCE_DIR"]
 MACHINE = os.path.join(ROOT, "samples/machines/generic-3axis.toml")
 # The controller family of each post, as `--dialect` (the sample machine profile says linuxcnc).
+# Philips controls are ISO controls of the Fanuc family: their "%PM" program start is a line
+# LinuxCNC refuses ("Bad character '%' used").
 DIALECT = {"fanuc": "fanuc", "grbl": "grbl", "jtech": "grbl", "marlin": "reprap",
-           "rrf": "reprap", "smoothie": "reprap", "mach3_mach4": "mach3", "uccnc": "mach3"}
+           "rrf": "reprap", "smoothie": "reprap", "mach3_mach4": "mach3", "uccnc": "mach3",
+           "philips": "fanuc"}
 # Posts whose output does not say which tool cuts, so removal cannot run:
 NO_REMOVAL = {
     "grbl": "grbl has no tool changer: the post comments M6 out",

@@ -51,6 +51,14 @@ TEST_CASE("words, lower case, blanks inside numbers and comments") {
 TEST_CASE("block delete, percent lines and grbl settings") {
   CHECK(lex("/G0 X1").block_delete);
   CHECK(lex("  %  ").percent);
+  CHECK(lex("  %  ").percent_bare);
+  for (const char* line : {"% vfd enable", "%(start)", "N10 %", "%%", "%prog1"}) {
+    CAPTURE(line);
+    const Block b = lex(line);
+    CHECK(b.percent);
+    CHECK_FALSE(b.percent_bare);
+  }
+  CHECK(lex("N10 %").percent_column == 5);
   CHECK(lex("$110=500", "grbl").dollar);
   CHECK_FALSE(lex("$110=500").warnings.empty()); // not in LinuxCNC: warned about, skipped
 }

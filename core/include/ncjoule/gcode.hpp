@@ -106,6 +106,9 @@ struct Dialect {
   // A full circle of zero radius (start, end and centre at one point, as Eagle's stepcraft.ulp
   // writes for holes smaller than its bit) is no motion (Mach3, UCCNC), where LinuxCNC refuses it.
   bool zero_radius_circle_is_no_motion = false;
+  // A '%' line holds '%' alone (LinuxCNC: "Bad character '%' used" for "%name", "% text" or
+  // "%(comment)"); elsewhere a name or a comment may follow it.
+  bool percent_alone = false;
   std::string comment_open = "("; // what the annotator writes
   std::string comment_close = ")";
 };

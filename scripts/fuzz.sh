@@ -23,7 +23,11 @@ mkdir -p "$out/artifacts"
 cmake -S "$root" -B "$out" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_C_COMPILER="${CC_FUZZ:-clang}" -DCMAKE_CXX_COMPILER="${CXX_FUZZ:-clang++}" \
   -DNCJOULE_FUZZ=ON -DNCJOULE_BUILD_TESTS=OFF > "$out/configure.log"
-cmake --build "$out" --parallel "$(nproc)" --target "${targets[@]/#/fuzz_}"
+build=("${targets[@]/#/fuzz_}")
+# The pipeline's seeds include annotated programs (strip's matching, from real markers): the CLI
+# writes them.
+[[ " ${targets[*]} " == *" pipeline "* ]] && build+=(ncjoule)
+cmake --build "$out" --parallel "$(nproc)" --target "${build[@]}"
 
 for target in "${targets[@]}"; do
   corpus="$out/corpus-$target"
@@ -39,6 +43,17 @@ for target in "${targets[@]}"; do
     fi
     find "$root/samples" -type f \( -name '*.ngc' -o -name '*.nc' \) -size -16k \
       -exec cp -f {} "$seeds/" \; 2>/dev/null || true
+  fi
+  if [ "$target" = pipeline ]; then
+    # Annotated programs, short enough that their markers fit the target's input length: inline
+    # comments only, a summary header first, and the ';' comments of a Heidenhain program.
+    tiny="$seeds/tiny.ngc"
+    printf 'G21 G90\nG0 X0 Y0 Z1\nG1 Z-1 F100\nG1 X5\nM2\n' > "$tiny"
+    cli=("$out/plugin/ncjoule" annotate --no-removal -m "$root/samples/machines/generic-3axis.toml")
+    "${cli[@]}" --no-header --fields T -o "$seeds/annotated-inline.ngc" -- "$tiny" 2>/dev/null
+    "${cli[@]}" --fields T -o "$seeds/annotated-header.ngc" -- "$tiny" 2>/dev/null
+    "${cli[@]}" --no-header --fields T,E --dialect heidenhain -o "$seeds/annotated-semicolon.h" \
+      -- "$tiny" 2>/dev/null
   fi
   # Short inputs keep the targets fast: the pipeline interprets twice, plans, removes,
   # integrates power, annotates and strips every input, so it reads the shortest (128 bytes: a
@@ -60,13 +75,23 @@ for target in "${targets[@]}"; do
   if [ -n "${RUNS:-}" ]; then what="$RUNS runs"; else what="${seconds} s"; fi
   echo "== fuzz_$target ($what; corpus: $corpus)"
   status=0
-  "$out/fuzz_$target" "$corpus" "$seeds" "${limit[@]}" "${extra[@]}" -max_len="$max_len" -timeout="$timeout" \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/artifacts/$target-" \
-    > "$out/fuzz_$target.log" 2>&1 || status=$?
-  grep -E '^(#[0-9]+ +(DONE|INITED)|SUMMARY|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb|artifact)' \
+  stamp="$out/.fuzz_$target.start"
+  touch "$stamp"
+  # Without the stack of every allocation (ASan records one per malloc, a tenth of the pipeline's
+  # time): a finding is replayed below with them, for the report of where the memory came from.
+  ASAN_OPTIONS="${ASAN_OPTIONS:-malloc_context_size=0}" \
+    "$out/fuzz_$target" "$corpus" "$seeds" "${limit[@]}" "${extra[@]}" -max_len="$max_len" \
+    -timeout="$timeout" -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$out/artifacts/$target-" > "$out/fuzz_$target.log" 2>&1 || status=$?
+  grep -E '^(#[0-9]+[[:space:]]+(DONE|INITED)|SUMMARY|stat::number_of_executed_units|stat::average_exec_per_sec|stat::peak_rss_mb|artifact)' \
     "$out/fuzz_$target.log" || true
   if [ "$status" -ne 0 ] || grep -qE 'ERROR: (libFuzzer|AddressSanitizer|UndefinedBehaviorSanitizer)|runtime error|Test unit written' \
        "$out/fuzz_$target.log"; then
+    find "$out/artifacts" -maxdepth 1 -type f -name "$target-*" ! -name "*.replay.log" -newer "$stamp" -print0 |
+      while IFS= read -r -d '' artifact; do
+        "$out/fuzz_$target" -timeout="$timeout" "$artifact" > "$artifact.replay.log" 2>&1 || true
+        echo "replayed with full stacks: $artifact.replay.log" >&2
+      done
     echo "fuzz_$target found a problem: see $out/fuzz_$target.log and $out/artifacts/" >&2
     exit 1
   fi

@@ -73,6 +73,10 @@ LineComments line_comments(std::string_view line, const Dialect& dialect) {
       const std::size_t end = close == std::string_view::npos ? line.size() : close;
       out.comments.push_back({trim(line.substr(i + 1, end - i - 1)), int(i) + 1});
       i = end + 1;
+    } else if (c == ')' && dialect.paren_comments) {
+      // A stray ')' (Estlcam's "(HSS Twist Drill, 3mm (R))" where comments do not nest): the
+      // lexer warns and passes over it, so it is no code.
+      ++i;
     } else if (c == ';') {
       // A comment to the end of the line, or the Fanuc family's end of block.
       if (dialect.semicolon_comments)

@@ -1,6 +1,7 @@
 // Tool descriptions in the comments CAM posts write (parse_tool_comments in removal.hpp): which
 // reader a comment goes to, and where a tool's number comes from when its comment gives none.
 // The formats themselves are in tool_comment_formats.cpp.
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 
@@ -93,6 +94,12 @@ private:
   std::map<int, Tool> numbered_, unnumbered_;
 };
 
+// A description without a number, where it was read.
+struct Listed {
+  DescribedTool tool;
+  int line, column;
+};
+
 // The tool number selected at or after `line` within `span` lines, or at or before it.
 std::optional<int> selected_after(const std::map<int, int>& selected, int line, int span) {
   const auto it = selected.lower_bound(line);
@@ -121,17 +128,17 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
                                         std::vector<Diagnostic>& diagnostics) {
   const DescriptionUnits units{context.inch};
   ToolCollector tools(source, diagnostics);
-  // Estlcam's "(Required tools:)" list: the comment-only lines after it, one tool each.
+  // Estlcam's "(Required tools:)" list: the comment-only lines after it, one tool each, in the
+  // order the program uses them.
   bool in_tool_list = false;
-  struct Listed {
-    DescribedTool tool;
-    int line, column;
-  };
   std::vector<Listed> listed;
-
   // A program that selects no tool may name the one it cuts with in its header (Eagle's
-  // stepcraft.ulp "(Use a 1/32inch Bit)"): the comment-only lines before its first code.
+  // stepcraft.ulp "(Use a 1/32inch Bit)"): the comment-only lines before its first code. Only
+  // where no list is given: a header's prose also says "a 1.5mm slot" of the part.
   bool in_header = context.selected_tools.empty();
+  std::vector<Listed> header;
+  // The free descriptions next to tool changes ("T2 M06 (Change tool: ...)"), one per change.
+  std::vector<Tool> named_at_changes;
   for (std::size_t index = 0; index < source.lines.size(); ++index) {
     const int line = int(index);
     const LineComments lc = line_comments(source.line_text(index), context.dialect);
@@ -148,7 +155,7 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
       }
       if (in_header && !read_numbered(upper, units))
         if (auto t = detail::read_free_tool(upper, units)) {
-          listed.push_back({*t, line, c.column});
+          header.push_back({*t, line, c.column});
           continue;
         }
       if (auto t = read_numbered(upper, units)) {
@@ -190,20 +197,50 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
       if (number)
         if (auto t = detail::read_free_tool(upper, units)) {
           t->tool.number = *number;
+          named_at_changes.push_back(t->tool);
           tools.add(*t, line, c.column, false);
         }
     }
   }
 
-  // The list names tools, not numbers: a program that never selects a tool cuts with the one it
-  // lists (tool 0); otherwise the names at its tool changes have numbered them above.
-  if (context.selected_tools.empty() && listed.size() == 1) {
-    listed[0].tool.tool.number = 0;
-    tools.add(listed[0].tool, listed[0].line, listed[0].column, false);
-  } else if (context.selected_tools.empty() && listed.size() > 1) {
-    tools.say(Severity::Warning, listed[0].line, listed[0].column,
-              "the program lists " + std::to_string(listed.size()) +
-                  " tools but selects none: which one cuts is not known; none is used");
+  // The list names tools, not numbers. A program that never selects a tool cuts with the one it
+  // lists (tool 0), or the one its header names; several descriptions of one geometry are one
+  // tool ("(Tool is an HSS 2mm 2-flute endmill)" above Estlcam's list).
+  const std::vector<Listed>& named = listed.empty() ? header : listed;
+  if (context.selected_tools.empty() && !named.empty()) {
+    const bool one_tool = std::all_of(named.begin(), named.end(), [&](const Listed& l) {
+      return same_geometry(l.tool.tool, named[0].tool.tool);
+    });
+    if (one_tool) {
+      DescribedTool only = named[0].tool;
+      only.tool.number = 0;
+      tools.add(only, named[0].line, named[0].column, false);
+    } else {
+      tools.say(Severity::Warning, named[0].line, named[0].column,
+                "the program lists " + std::to_string(named.size()) +
+                    " tools but selects none: which one cuts is not known; none is used");
+    }
+  } else if (!listed.empty()) {
+    // Estlcam's start code changes no tool: the program starts with the first tool of its list,
+    // the one no tool change names (each change names one listed tool).
+    std::vector<bool> matched(listed.size(), false);
+    for (const Tool& changed : named_at_changes)
+      for (std::size_t k = 0; k < listed.size(); ++k)
+        if (!matched[k] && same_geometry(listed[k].tool.tool, changed)) {
+          matched[k] = true;
+          break;
+        }
+    const auto first = std::find(matched.begin(), matched.end(), false);
+    if (first != matched.end()) {
+      const Listed& start = listed[std::size_t(first - matched.begin())];
+      DescribedTool at_start = start.tool;
+      at_start.tool.number = 0;
+      tools.say(Severity::Note, start.line, start.column,
+                "tool T0 (in the spindle before the first tool change): '" +
+                    at_start.tool.description +
+                    "', the first listed tool that no tool change names");
+      tools.add(at_start, start.line, start.column, false);
+    }
   }
   return tools.take();
 }

@@ -166,6 +166,56 @@ TEST_CASE("Estlcam: the required tools list and the tool change comments") {
     CHECK(tools.at(2).shape == ToolShape::BallEndMill);
     CHECK_FALSE(has_warning(diags));
   }
+  SUBCASE("the list wins over a header's prose, which also names sizes of the part") {
+    // Estlcam 11, as a user's start text writes it above the list.
+    const auto tools = read_tools(
+        "( Provides a 1.5mm depth cut-out in the spoil-board in which to slot the plates )\n"
+        "( Tool is an HSS 3.175mm single-flute endmill running at 18335rpm )\n\n"
+        "(Project spoilboard-cutout)\n(Created by Estlcam version 11 build 11.107)\n\n"
+        "(Required tools:)\n(Al - HSS 1-Flute Endmill, 3.175mm)\n\nG90\nM03 S18335\n"
+        "G00 Z20.0000\nG00 X1.9 Y2.1\nG01 Z-0.5 F60\nG01 X61.6 F1164\nM05\nM30\n",
+        diags);
+    REQUIRE(tools.size() == 1);
+    REQUIRE(tools.count(0));
+    CHECK(tools.at(0).diameter_mm == doctest::Approx(3.175));
+    CHECK_FALSE(has_warning(diags));
+  }
+  SUBCASE("a header's descriptions of one geometry are one tool") {
+    const auto tools = read_tools("( Tool is an HSS 2mm 2-flute endmill running at 19404rpm )\n"
+                                  "( Use a 2mm end mill )\nG21 G90\nG01 Z-1 F600\nM30\n",
+                                  diags);
+    REQUIRE(tools.count(0));
+    CHECK(tools.at(0).diameter_mm == 2);
+    CHECK_FALSE(has_warning(diags));
+  }
+  SUBCASE("the first listed tool no tool change names is in the spindle at the start") {
+    // Estlcam 10: its start code changes no tool; the list is in the order of use and a nested
+    // "(R)" closes the comment early ("unexpected ')'" from the interpreter).
+    const auto tools = read_tools(
+        "(Required tools:)\n(HSS Twist Drill, 3mm (R))\n(HSS 1-Flute Endmill, 3.175mm)\n\n"
+        "G90\nM03 S9000\nG00 Z5\n(No. 1: Drill Centre Hole)\nG01 Z-2 F300\nG00 Z5\nM05\n"
+        "T1 M06 (Change tool: HSS 1-Flute Endmill, 3.175mm)\nM03\nG01 Z-1 F300\nM30\n",
+        diags);
+    REQUIRE(tools.size() == 2);
+    CHECK(tools.at(1).diameter_mm == doctest::Approx(3.175));
+    REQUIRE(tools.count(0));
+    CHECK(tools.at(0).shape == ToolShape::Drill);
+    CHECK(tools.at(0).diameter_mm == 3);
+    CHECK_FALSE(has_warning(diags));
+  }
+  SUBCASE("two listed tools of one geometry are used up by two tool changes") {
+    // A reamer's pre-drill and finish drill, both 4.5 mm, both changed to as T2.
+    const auto tools = read_tools(
+        "(Required tools:)\n(HSS Twist Drill, 4.5mm (R))\n(HSS 2-Flute Endmill, 3.175mm)\n"
+        "(HSS Twist Drill, 4.5mm (F))\n\nG90\nM03 S16000\nG01 Z-1 F300\nM05\n"
+        "T2 M06 (Change tool: HSS Twist Drill, 4.5mm R)\nM03\nG01 Z-2\nM05\n"
+        "T1 M06 (Change tool: HSS 2-Flute Endmill, 3.175mm)\nM03\nG01 Z-3\nM05\n"
+        "T2 M06 (Change tool: HSS Twist Drill, 4.5mm F)\nM03\nG01 Z-4\nM30\n",
+        diags);
+    CHECK_FALSE(tools.count(0)); // every listed tool is named by a change
+    REQUIRE(tools.count(1));
+    CHECK(tools.at(2).shape == ToolShape::Drill);
+  }
   SUBCASE("several tools and no tool change: none is guessed") {
     const auto tools =
         read_tools("(Required tools:)\n(End mill 3mm)\n(End mill 6mm)\nG21\nG01 Z-1 F600\n", diags);

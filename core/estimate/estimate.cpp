@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <exception>
 
+#include "long_arc_check.hpp"
 #include "ncjoule/log.hpp"
 #include "result_fold.hpp"
 
@@ -44,13 +46,41 @@ struct ProgramScan {
   StockExtent extent;
   std::size_t commands = 0;
   ToolCommentContext tool_comments; // units and tool changes the comments are read against
+  ZDirectionScan z_direction;
+  estimate_detail::LongArcCheck long_arcs;
   void add(const CanonCommand& c) {
     ++commands;
     tools.add(c);
     extent.add(c);
     tool_comments.add(c);
+    z_direction.add(c);
+    long_arcs.add(c);
   }
 };
+
+// Whether removal reads the program's Z mirrored: as the profile says, else as the program's
+// rapids show (with a warning that says what was seen and how to settle it).
+bool mirror_z(const MachineProfile& machine, const ZDirectionScan& scan, Estimate& e) {
+  switch (machine.kinematics.z_positive) {
+  case ZDirection::Up:
+    return false;
+  case ZDirection::Down:
+    return true;
+  case ZDirection::Auto:
+    break;
+  }
+  if (!scan.points_down()) return false;
+  char seen[160];
+  std::snprintf(seen, sizeof seen, "rapids at Z%.3f and below, cuts at Z%.3f and above",
+                scan.highest_rapid_z(), scan.lowest_cut_z());
+  e.diagnostics.push_back(
+      {Severity::Warning, e.file, 0, 0,
+       std::string("every rapid across XY runs below the cuts (") + seen +
+           "): it was posted for a machine whose +Z points into the work (a post that scales Z "
+           "by -1). Removal reads its Z mirrored; times do not change. Say which way Z points "
+           "with z_positive = \"down\" or \"up\" under [kinematics] in the machine profile"});
+  return true;
+}
 
 // The tools as described by the tool table, then the program's header comments, then the job
 // file and the command line, each replacing the one before for the same number.
@@ -124,6 +154,8 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.blocks = run.blocks;
   e.commands = run.commands;
   add_diagnostics(e, std::move(run.diagnostics), source.path);
+  if (auto long_arcs = scan.long_arcs.verdict(source.path))
+    add_diagnostics(e, {std::move(*long_arcs)}, source.path);
   logger().info("scan: {} blocks, {} commands in {:.3f} s", run.blocks, scan.commands,
                 seconds_since(t));
   if (options.progress) options.progress(0.1);
@@ -147,10 +179,20 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
       if (auto it = e.tools.find(number); it != e.tools.end()) used.insert(*it);
     RemovalOptions removal_options = options.removal;
     removal_options.source_path = source.path;
+    removal_options.mirror_z = mirror_z(machine, scan.z_direction, e);
     t = Clock::now();
+    // The default stock is sized from the moves as removal sees them.
+    StockExtent mirrored;
+    if (removal_options.mirror_z) {
+      InterpreterOptions again = interpreter;
+      again.dialect = e.dialect;
+      again.keep_diagnostics = false;
+      interpret(source, again, [&mirrored](const CanonCommand& c) { mirrored.add(mirrored_z(c)); });
+    }
     try {
-      removal = std::make_unique<RemovalSimulator>(options.stock ? *options.stock : StockSpec{},
-                                                   scan.extent, used, removal_options);
+      removal = std::make_unique<RemovalSimulator>(
+          options.stock ? *options.stock : StockSpec{},
+          removal_options.mirror_z ? mirrored : scan.extent, used, removal_options);
     } catch (const std::exception& ex) {
       e.diagnostics.push_back({Severity::Error, source.path, 0, 0,
                                std::string("material removal failed: ") + ex.what()});

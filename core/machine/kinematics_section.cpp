@@ -38,6 +38,16 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   k.tool_change_s = t.quantity("tool_change", Dimension::Time, Range::NonNegative);
   k.spindle_s_per_1000rpm = t.quantity("spindle_ramp", Dimension::RampTime, Range::NonNegative);
 
+  if (const auto z = t.optional_string("z_positive")) {
+    if (*z == "up")
+      k.z_positive = ZDirection::Up;
+    else if (*z == "down")
+      k.z_positive = ZDirection::Down;
+    else
+      t.fail("z_positive", "must be \"up\" (+Z moves the tool away from the work) or \"down\" "
+                           "(into it); leave it out to have it read from each program");
+  }
+
   constexpr std::array<const char*, 3> names{"x", "y", "z"};
   for (std::size_t i = 0; i < names.size(); ++i)
     k.axes[i] = read_axis(t.table(names[i]));

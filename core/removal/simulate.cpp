@@ -88,9 +88,12 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
 
   // The stock.
   switch (spec.kind) {
-  case StockSpec::Kind::Box:
-    stock_ = make_box_stock(spec.box, format_box(spec.box) + " (given)");
+  case StockSpec::Kind::Box: {
+    Box3 box = spec.box;
+    if (options.mirror_z) box.zmin = -spec.box.zmax, box.zmax = -spec.box.zmin;
+    stock_ = make_box_stock(box, format_box(spec.box) + " (given)");
     break;
+  }
   case StockSpec::Kind::Stl: {
     std::vector<Diagnostic> problems;
     auto mesh = read_stl(spec.stl_path, problems);
@@ -105,6 +108,10 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     const std::string text = "STL " + spec.stl_path + " (" +
                              std::to_string(mesh->triangles.size()) + " triangles, bounds " +
                              format_box(mesh->bounds()) + ")";
+    if (options.mirror_z) // crossings pair up along each column: the winding does not matter
+      for (Triangle& t : mesh->triangles)
+        for (auto& vertex : t.v)
+          vertex[2] = -vertex[2];
     stock_ = make_mesh_stock(std::move(*mesh), text);
     break;
   }
@@ -127,6 +134,10 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   }
   }
   totals_.stock_description = stock_->description();
+  if (options.mirror_z)
+    totals_.stock_description += "; Z mirrored (+Z points into the work): the program's Z" +
+                                 format_mm3(-stock_->bounds().zmax) + " is the stock's top, Z" +
+                                 format_mm3(-stock_->bounds().zmin) + " its bottom";
   const Box3 bounds = stock_->bounds();
   if (bounds.empty()) {
     diag(Severity::Error, 0, "stock has no volume: nothing is removed");
@@ -198,6 +209,7 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
                               std::vector<CommandRemoval>& out) {
   out.assign(moves.size(), CommandRemoval{});
   if (!engine_) return;
+  const double z_sign = options_.mirror_z ? -1.0 : 1.0;
   // Every move's steps, in order, in one batch; first[k] is move k's first step.
   steps_.clear();
   std::vector<std::size_t> first(moves.size() + 1, 0);
@@ -217,7 +229,7 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
       // start point is wrong, and the first moves would cut where nothing can.
       first_move_checked_ = true;
       const Point3 at{cmd.start.x, cmd.start.y, cmd.start.z};
-      if (engine_->material_at(at)) {
+      if (engine_->material_at({at.x, at.y, z_sign * at.z})) {
         char text[200];
         std::snprintf(text, sizeof text,
                       "the program's first move starts inside the stock (X%.3f Y%.3f Z%.3f mm): "
@@ -241,7 +253,7 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     for (std::size_t s = 0; s + 1 < samples->size(); ++s) {
       const Pose& a = (*samples)[s].position;
       const Pose& b = (*samples)[s + 1].position;
-      steps_.push_back({&tool->second, {a.x, a.y, a.z}, {b.x, b.y, b.z}});
+      steps_.push_back({&tool->second, {a.x, a.y, z_sign * a.z}, {b.x, b.y, z_sign * b.z}});
     }
     out[k].step_volume_mm3.resize(samples->size() - 1);
   }
@@ -287,7 +299,8 @@ RemovalResult simulate_removal(const std::vector<CanonCommand>& commands, const 
                                const RemovalOptions& options) {
   StockExtent extent;
   for (const TimedCommand& tc : timeline.commands)
-    if (tc.command < commands.size()) extent.add(commands[tc.command]);
+    if (tc.command < commands.size())
+      extent.add(options.mirror_z ? mirrored_z(commands[tc.command]) : commands[tc.command]);
   // The tools moves use (the grid is sized for them).
   std::map<int, Tool> used;
   for (const CanonCommand& c : commands)

@@ -252,3 +252,16 @@ TEST_CASE("[power]: cutting term, material, efficiency and spindle rating are re
       refusal(with_line("spindle_rated_w", "spindle_power_curve_rpm_w = [[6000, 1], [1000, 2]]")),
       "power.spindle_power_curve_rpm_w");
 }
+
+TEST_CASE("which way +Z points: up, down, or left to each program") {
+  CHECK(parse_profile(read(sample_path("generic-3axis.toml")), "g.toml").kinematics.z_positive ==
+        ZDirection::Auto);
+  const std::string down = with_line("tool_change_s", "tool_change_s = 6.0\nz_positive = \"down\"");
+  CHECK(parse_profile(down, "d.toml").kinematics.z_positive == ZDirection::Down);
+  const std::string up = with_line("tool_change_s", "tool_change_s = 6.0\nz_positive = \"up\"");
+  CHECK(parse_profile(up, "u.toml").kinematics.z_positive == ZDirection::Up);
+  const ProfileError e =
+      refusal(with_line("tool_change_s", "tool_change_s = 6.0\nz_positive = \"-1\""));
+  check_names_file_and_key(e, "kinematics.z_positive");
+  CHECK(e.reason().find("\"down\"") != std::string::npos);
+}

@@ -35,6 +35,11 @@ enum class FeedProfile { Trapezoid, SCurve }; // velocity profile per block
 //             tolerances, its full stops and its servo-cycle limits (docs/machine-profiles.md).
 enum class JunctionRule { Tolerance, NextFeed, LinuxCnc29 };
 
+// Which way +Z moves the tool. Up: away from the work (ISO 841, every standard mill). Down:
+// into it (a machine whose post scales Z by -1, as Estlcam's "Scale z=-1" does). Auto: up,
+// unless a program's rapids across XY all run below its cuts (the estimate then says so).
+enum class ZDirection { Auto, Up, Down };
+
 struct Kinematics {
   std::array<AxisLimits, 3> axes; // X, Y, Z
   double rotary_rapid_deg_s = 0;  // A/B/C, 0 when the machine has none
@@ -46,6 +51,7 @@ struct Kinematics {
   bool exact_stop_every_block = false; // every block starts and ends at rest, whatever G64 says
   double tool_change_s = 0;            // time of one M6
   double spindle_s_per_1000rpm = 0;    // spindle ramp: seconds per 1000 rpm of speed change
+  ZDirection z_positive = ZDirection::Auto; // removal only: times do not depend on it
 };
 
 // Pavanaskar Eq. 3.12 constants (per machine, per axis). Units: W, W/(mm/s), W/rpm, W/(mm^3/s).

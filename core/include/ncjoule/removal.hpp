@@ -160,6 +160,29 @@ private:
   std::vector<double> levels_;
 };
 
+// Which way a program's Z runs, from where its rapids cross XY: on a standard mill (+Z away from
+// the work) a program retracts to cross, so its rapids across XY run above its lowest cut. One
+// whose every such rapid runs below every point of its cuts across XY (plunges and retracts in
+// Z alone left out) was posted for a machine whose +Z points into the work (a post that scales
+// Z by -1, as Estlcam allows).
+class ZDirectionScan {
+public:
+  void add(const CanonCommand& command);
+  // At least one rapid across XY and one cut, every such rapid below every cut.
+  bool points_down() const;
+  double highest_rapid_z() const { return highest_rapid_; } // mm
+  double lowest_cut_z() const { return lowest_cut_; }       // mm
+
+private:
+  double highest_rapid_ = -std::numeric_limits<double>::infinity();
+  double lowest_cut_ = std::numeric_limits<double>::infinity();
+  bool rapid_ = false, cut_ = false;
+};
+
+// The command as removal sees it on a machine whose +Z points into the work: Z negated (arcs in
+// the XZ and YZ planes turn the other way).
+CanonCommand mirrored_z(const CanonCommand& command);
+
 struct Triangle {
   double v[3][3]; // three vertices, x y z
 };
@@ -288,6 +311,10 @@ struct RemovalOptions {
   // automatic_grid_spacing).
   double work_columns = 4e8;
   std::string source_path; // file name used in diagnostics
+  // The program's +Z points into the work (ZDirection::Down): removal negates Z, of the moves
+  // and of a given stock (box or STL, in program coordinates). The extent that sizes the default
+  // stock must then be of the mirrored commands (mirrored_z).
+  bool mirror_z = false;
 };
 inline constexpr std::size_t kDefaultRemovalMemoryBudget = std::size_t(1) << 30; // 1 GiB
 

@@ -1,0 +1,124 @@
+// What the estimate says of a program's geometry before timing it: a program posted for a
+// machine whose +Z points into the work (its removal mirrored), and arcs that turn the long way
+// round (G2 and G3 swapped by a post).
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "ncjoule/estimate.hpp"
+#include "ncjoule/profile.hpp"
+
+using namespace ncjoule;
+
+namespace {
+
+MachineProfile generic() {
+  return load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
+}
+
+bool warned(const Estimate& e, std::string_view words) {
+  for (const Diagnostic& d : e.diagnostics)
+    if (d.severity == Severity::Warning && d.message.find(words) != std::string::npos) return true;
+  return false;
+}
+
+// Two passes of a 6 mm slot, 1.5 and 3 mm deep, with rapids at the clearance `up` mm from the
+// top: `z` is +1 for a standard machine, -1 for one whose +Z points into the work (Estlcam's
+// "Scale z=-1" writes the same program with every Z negated).
+std::string two_pass_slot(double z, double up = 5) {
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "G21 G90 G17\n(T1 D=6. CR=0. - ZMIN=-3. - FLAT END MILL)\nT1 M6\nS8000 M3\n"
+                "G0 Z%g\nG0 X-10 Y0\nG1 Z%g F100\nG1 X60 F600\nG0 Z%g\nG0 X-10\nG1 Z%g F100\n"
+                "G1 X60 F600\nG0 Z%g\nM5\nM30\n",
+                z * up, -z * 1.5, z * up, -z * 3, z * up);
+  return text;
+}
+
+} // namespace
+
+TEST_CASE("a program posted for a machine whose +Z points into the work") {
+  const MachineProfile machine = generic();
+  const Estimate up = estimate_program(make_source("up.nc", two_pass_slot(1)), machine, {});
+  const Estimate down = estimate_program(make_source("down.nc", two_pass_slot(-1)), machine, {});
+  REQUIRE(up.removal);
+  REQUIRE(down.removal);
+  CHECK_FALSE(warned(up, "every rapid across XY runs below the cuts"));
+  CHECK(warned(down, "every rapid across XY runs below the cuts"));
+  CHECK_FALSE(warned(down, "collision"));
+  // The mirrored program removes what its twin does (the second pass: 1.5 mm of a 6 mm slot
+  // over the default stock's 76 mm), in the same time.
+  CHECK(up.energy.removed_mm3 > 100);
+  CHECK(down.energy.removed_mm3 == doctest::Approx(up.energy.removed_mm3).epsilon(1e-9));
+  CHECK(down.time_s == doctest::Approx(up.time_s).epsilon(1e-12));
+  CHECK(down.removal->stock_description.find("Z mirrored") != std::string::npos);
+
+  SUBCASE("a stock given in the program's coordinates") {
+    EstimateOptions up_stock, down_stock;
+    up_stock.stock = parse_stock_spec("box:-20,-10,-10,80,10,0");
+    down_stock.stock = parse_stock_spec("box:-20,-10,0,80,10,10");
+    const Estimate a = estimate_program(make_source("up.nc", two_pass_slot(1)), machine, up_stock);
+    const Estimate b =
+        estimate_program(make_source("down.nc", two_pass_slot(-1)), machine, down_stock);
+    // A 6 mm slot 3 mm deep from X-10 to X60, in two passes, inside the stock.
+    CHECK(a.energy.removed_mm3 > 1000);
+    CHECK(b.energy.removed_mm3 == doctest::Approx(a.energy.removed_mm3).epsilon(1e-9));
+    CHECK_FALSE(warned(b, "collision"));
+  }
+  SUBCASE("the profile says which way Z points") {
+    MachineProfile told = machine;
+    told.kinematics.z_positive = ZDirection::Up;
+    const Estimate as_up = estimate_program(make_source("down.nc", two_pass_slot(-1)), told, {});
+    CHECK_FALSE(warned(as_up, "every rapid across XY runs below the cuts"));
+    CHECK(as_up.energy.removed_mm3 != doctest::Approx(up.energy.removed_mm3));
+    told.kinematics.z_positive = ZDirection::Down;
+    const Estimate as_down = estimate_program(make_source("down.nc", two_pass_slot(-1)), told, {});
+    CHECK_FALSE(warned(as_down, "every rapid across XY runs below the cuts")); // no guess said
+    CHECK(as_down.energy.removed_mm3 == doctest::Approx(up.energy.removed_mm3).epsilon(1e-9));
+  }
+  SUBCASE("a rapid across XY above a cut is a standard program") {
+    // Rapids at Z-5 but one crossing at Z2, past the first cut at Z1.5 of a Z-down program:
+    // either way Z points, some rapid crosses the cuts; nothing is guessed.
+    std::string mixed = two_pass_slot(-1);
+    mixed.replace(mixed.find("G0 X-10\n"), 8, "G0 Z2\nG0 X-10\n");
+    const Estimate e = estimate_program(make_source("mixed.nc", mixed), machine, {});
+    CHECK_FALSE(warned(e, "every rapid across XY runs below the cuts"));
+  }
+}
+
+TEST_CASE("arcs that turn the long way round: G2 and G3 swapped by the post") {
+  const MachineProfile machine = generic();
+  // Twelve quarter circles of radius 10 around X0 Y0, then the same written the other way: a
+  // post that swaps X and Y without swapping G2/G3 writes each as a three-quarter turn.
+  std::string quarters = "G21 G90 G17\nG0 X10 Y0 Z1\nG1 Z-1 F100\nF600\n";
+  std::string swapped = quarters;
+  const char* ends[] = {"X0 Y10", "X-10 Y0", "X0 Y-10", "X10 Y0"};
+  for (int k = 0; k < 12; ++k) {
+    const std::string end = ends[k % 4];
+    const std::string centre = k % 4 == 0   ? "I-10 J0"
+                               : k % 4 == 1 ? "I0 J-10"
+                               : k % 4 == 2 ? "I10 J0"
+                                            : "I0 J10";
+    quarters += "G3 " + end + " " + centre + "\n";
+    swapped += "G2 " + end + " " + centre + "\n";
+  }
+  quarters += "G0 Z1\nM30\n";
+  swapped += "G0 Z1\nM30\n";
+  EstimateOptions options;
+  options.simulate_removal = false;
+  const Estimate good = estimate_program(make_source("good.nc", quarters), machine, options);
+  const Estimate bad = estimate_program(make_source("bad.nc", swapped), machine, options);
+  CHECK_FALSE(warned(good, "G2 and G3 look swapped"));
+  CHECK(warned(bad, "G2 and G3 look swapped"));
+  // The controller runs the long way: three times the path, and about three times the time.
+  CHECK(bad.time_s > 2.5 * good.time_s);
+
+  SUBCASE("whole circles and a few long arcs are meant") {
+    std::string circles = "G21 G90 G17\nG0 X10 Y0 Z1\nG1 Z-1 F100\nF600\n";
+    for (int k = 0; k < 12; ++k)
+      circles += "G2 X10 Y0 I-10 J0\n";
+    circles += "G3 X0 Y-10 I-10 J0\nG0 Z1\nM30\n"; // one three-quarter turn among whole circles
+    const Estimate e = estimate_program(make_source("circles.nc", circles), machine, options);
+    CHECK_FALSE(warned(e, "G2 and G3 look swapped"));
+  }
+}

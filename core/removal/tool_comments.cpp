@@ -122,6 +122,7 @@ void ToolCommentContext::add(const CanonCommand& c) {
     units_known = true;
   }
   if (c.kind == CanonKind::SelectTool) selected_tools.emplace(c.line, int(c.value));
+  if (is_move(c.kind) && selected_tools.empty()) moves_before_first_tool = true;
 }
 
 std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolCommentContext& context,
@@ -220,7 +221,7 @@ std::map<int, Tool> parse_tool_comments(const SourceFile& source, const ToolComm
                 "the program lists " + std::to_string(named.size()) +
                     " tools but selects none: which one cuts is not known; none is used");
     }
-  } else if (!listed.empty()) {
+  } else if (!listed.empty() && context.moves_before_first_tool) {
     // Estlcam's start code changes no tool: the program starts with the first tool of its list,
     // the one no tool change names (each change names one listed tool).
     std::vector<bool> matched(listed.size(), false);

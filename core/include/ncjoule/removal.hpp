@@ -36,9 +36,10 @@ namespace ncjoule {
 // takes the number selected next to it).
 struct ToolCommentContext {
   Dialect dialect;
-  bool inch = false;                 // the program's units (its first G20/G21, G70/G71)
-  bool units_known = false;          // set by the first units code or move
-  std::map<int, int> selected_tools; // 0-based source line -> T number selected there
+  bool inch = false;                    // the program's units (its first G20/G21, G70/G71)
+  bool units_known = false;             // set by the first units code or move
+  std::map<int, int> selected_tools;    // 0-based source line -> T number selected there
+  bool moves_before_first_tool = false; // a move runs before any tool is selected
   // Learns the units and the tool selections from the interpreter's commands, in order.
   void add(const CanonCommand& command);
 };

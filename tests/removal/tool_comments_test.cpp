@@ -203,6 +203,16 @@ TEST_CASE("Estlcam: the required tools list and the tool change comments") {
     CHECK(tools.at(0).diameter_mm == 3);
     CHECK_FALSE(has_warning(diags));
   }
+  SUBCASE("a program that changes tools before it moves has no tool at the start") {
+    // A start code with a tool change: the listed drill no change names is not guessed in.
+    const auto tools = read_tools(
+        "(Required tools:)\n(HSS Twist Drill, 3mm)\n(HSS 1-Flute Endmill, 3.175mm)\n\nG90\n"
+        "T1 M06 (Change tool: HSS 1-Flute Endmill, 3.175mm)\nM03 S9000\nG00 Z5\n"
+        "G01 Z-1 F300\nM30\n",
+        diags);
+    CHECK_FALSE(tools.count(0));
+    REQUIRE(tools.count(1));
+  }
   SUBCASE("two listed tools of one geometry are used up by two tool changes") {
     // A reamer's pre-drill and finish drill, both 4.5 mm, both changed to as T2.
     const auto tools = read_tools(

@@ -74,6 +74,7 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
                                    const std::map<int, Tool>& tools, const RemovalOptions& options)
     : tools_(tools), options_(options) {
   totals_.engine = options.engine;
+  totals_.z_mirrored = options.mirror_z;
   auto diag = [&](Severity s, int line, std::string message) {
     totals_.diagnostics.push_back({s, options.source_path, line, 0, std::move(message)});
   };

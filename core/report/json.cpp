@@ -139,6 +139,7 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
     w.field("columns", removal->grid.columns());
     w.field("stock_volume_mm3", removal->stock_volume_mm3);
     w.field("memory_bytes", removal->memory_bytes);
+    w.field("z_mirrored", removal->z_mirrored);
     w.end_object();
   }
   w.key("tools");

@@ -151,6 +151,41 @@ with tempfile.TemporaryDirectory() as tmp:
           f"default stock: top at the upper level, not the clearance plane (got {v})")
     check("collision" not in r.stderr, "no collision reported")
 
+    # +Z into the work: the slot posted with every Z negated, on a profile that says so, cuts
+    # what the slot does from the mirrored STL (1 mm thick, Z0 to 1 in the program's terms).
+    down = os.path.join(tmp, "down.ngc")
+    with open(down, "w") as f:
+        # Twice along the slot: the second crossing is a rapid from a known point.
+        f.write(SLOT.replace("Z5", "Z-5").replace("Z-2", "Z2").replace(
+            "M30", "G0 X0\nG1 Z2 F200\nG1 X40 F600\nG0 Z-5\nM30"))
+    down_machine = os.path.join(tmp, "down.toml")
+    with open(MACHINE) as f:
+        text = f.read()
+    with open(down_machine, "w") as f:
+        f.write(text.replace("\ntool_change_s", '\nz_positive = "down"\ntool_change_s', 1))
+    box_stl(os.path.join(tmp, "down.stl"), -10, -10, 0, 50, 10, 1)
+    r = subprocess.run([NCJOULE, "estimate", down, "--machine", down_machine, "--stock",
+                        os.path.join(tmp, "down.stl"), "--json", "--grid", "0.1", "--tool",
+                        "1:flat:8"], capture_output=True, text=True)
+    doc = json.loads(r.stdout) if r.returncode == 0 else {}
+    v = doc.get("removed_mm3")
+    check(v is not None and abs(v - slot_volume(8) / 2) < 3e-3 * slot_volume(8),
+          f"z_positive = down: a mirrored STL stock cut as its twin (got {v}; {r.stderr[:200]})")
+    check(doc.get("removal", {}).get("z_mirrored") is True, "JSON says removal.z_mirrored")
+    check("collision" not in r.stderr and "every rapid" not in r.stderr,
+          f"no collision, and no guess when the profile says ({r.stderr[:200]!r})")
+    # The generic profile reads it from the program's rapids, and says so.
+    r = run(down, "--stock", "box:-10,-10,0,50,10,1", "--json", "--grid", "0.1", "--tool",
+            "1:flat:8")
+    doc = json.loads(r.stdout) if r.returncode == 0 else {}
+    check(doc.get("removal", {}).get("z_mirrored") is True and "every rapid" in r.stderr,
+          f"z read from the program, with a warning ({r.stderr[:200]!r})")
+    v = doc.get("removed_mm3")
+    check(v is not None and abs(v - slot_volume(8) / 2) < 3e-3 * slot_volume(8),
+          f"a given box in the program's coordinates (got {v})")
+    r = run(prog, "--stock", box, "--json")
+    check(json.loads(r.stdout)["removal"]["z_mirrored"] is False, "a standard program: not mirrored")
+
 # The sample with both engines at one grid, from its sidecar stock.
 sample = os.path.join(ROOT, "samples/programs/bracket-linuxcnc.ngc")
 with open(os.path.join(ROOT, "samples/programs/bracket-linuxcnc.stock")) as f:

@@ -359,6 +359,7 @@ struct RemovalResult {
   EngineKind engine = EngineKind::Dexel;
   GridFrame grid;              // the grid used (dx, dy: cell size in mm)
   double stock_volume_mm3 = 0; // material before the program, as the engine holds it
+  bool z_mirrored = false;     // the program's Z was read mirrored (RemovalOptions::mirror_z)
   EngineStats stats;
 };
 

@@ -60,8 +60,8 @@ for target in "${targets[@]}"; do
   # dozen blocks, and loops make long programs of them). It gets a longer timeout: a short loop
   # can be a legitimately long program. Its runs touch thousands of counters, and the entropic
   # scheduler's bookkeeping per counter was a quarter of each run (perf): the plain scheduler
-  # runs it a quarter faster. On one core, inputs a second: lexer 1,250, interpreter 1,170,
-  # profiles 24,000, pipeline 800 (1M runs in 21 minutes).
+  # runs it a quarter faster. On one core (the other busy), inputs a second over 1M runs:
+  # lexer 1,190, interpreter 1,550, profiles 27,800, pipeline 1,450 (1M runs in 12 minutes).
   timeout=10
   extra=()
   case "$target" in

@@ -12,6 +12,8 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 quick=0
 if [ "${1:-}" = "--quick" ]; then quick=1; shift; fi
 N="${1:-$root/build/plugin/ncjoule}"
+# Absolute: the cases run in a folder of their own.
+N="$(cd "$(dirname "$N")" && pwd)/$(basename "$N")"
 M="$root/samples/machines/generic-3axis.toml"
 P="$root/samples/programs/bracket-linuxcnc.ngc"
 work="$(mktemp -d)"

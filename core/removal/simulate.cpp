@@ -220,6 +220,16 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     const CanonCommand& cmd = *moves[k].command;
     const TimedCommand& tc = *moves[k].timed;
     if (!is_move(cmd.kind)) continue;
+    if (!warned_rotary_ &&
+        (cmd.start.a != cmd.end.a || cmd.start.b != cmd.end.b || cmd.start.c != cmd.end.c)) {
+      // The stock model is 3-axis: it does not turn with a rotary table or a 4th axis.
+      warned_rotary_ = true;
+      totals_.diagnostics.push_back(
+          {Severity::Warning, options_.source_path, tc.line + 1, 0,
+           "the program turns a rotary axis (A/B/C) here: removal is 3-axis (the stock does not "
+           "turn), so volumes, MRR, cutting power and collisions from here on are "
+           "approximations; times are not"});
+    }
     const auto tool = tools_.find(cmd.state.tool);
     if (tool == tools_.end()) continue;
     // A rapid from where the program has not yet said the spindle is ("G0 X Y" before the

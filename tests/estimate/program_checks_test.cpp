@@ -1,6 +1,6 @@
-// What the estimate says of a program's geometry before timing it: a program posted for a
-// machine whose +Z points into the work (its removal mirrored), and arcs that turn the long way
-// round (G2 and G3 swapped by a post).
+// What the estimate says of a program's geometry: a program posted for a machine whose +Z points
+// into the work (its removal mirrored), arcs that turn the long way round (G2 and G3 swapped by
+// a post), and a rotary axis that 3-axis removal cannot follow.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -121,4 +121,22 @@ TEST_CASE("arcs that turn the long way round: G2 and G3 swapped by the post") {
     const Estimate e = estimate_program(make_source("circles.nc", circles), machine, options);
     CHECK_FALSE(warned(e, "G2 and G3 look swapped"));
   }
+}
+
+TEST_CASE("a program that turns a rotary axis: removal is labelled an approximation") {
+  const MachineProfile machine = generic();
+  const std::string flat = "G21 G90 G17\n(T1 D=6. CR=0. - ZMIN=-3. - FLAT END MILL)\nT1 M6\n"
+                           "S8000 M3\nG0 X-10 Y0 Z5\nG1 Z-1 F100\nG1 X60 F600\nG0 Z5\n";
+  EstimateOptions options;
+  options.stock = parse_stock_spec("box:-20,-10,-10,80,10,0");
+  const Estimate three_axis =
+      estimate_program(make_source("flat.nc", flat + "M30\n"), machine, options);
+  CHECK_FALSE(warned(three_axis, "rotary axis"));
+  // Turned half round, the same cut again: on the machine it cuts the other side of the part.
+  const Estimate four_axis = estimate_program(
+      make_source("b.nc", flat + "G0 B180\nG1 Z-1 F100\nG1 X-10 F600\nG0 Z5\nM30\n"), machine,
+      options);
+  CHECK(warned(four_axis, "the program turns a rotary axis (A/B/C) here"));
+  for (const Diagnostic& d : four_axis.diagnostics)
+    if (d.message.find("rotary axis (A/B/C) here") != std::string::npos) CHECK(d.line == 9);
 }

@@ -407,6 +407,7 @@ private:
   RemovalResult totals_; // commands left empty
   bool warned_no_samples_ = false;
   bool first_move_checked_ = false; // the program's first move was checked for starting inside
+  bool warned_rotary_ = false;      // a move of A/B/C was said to make removal approximate
   std::vector<RemovalStep> steps_;  // scratch
   std::vector<double> volumes_;
 };

@@ -60,7 +60,7 @@ struct ProgramScan {
 
 // Whether removal reads the program's Z mirrored: as the profile says, else as the program's
 // rapids show (with a warning that says what was seen and how to settle it).
-bool mirror_z(const MachineProfile& machine, const ZDirectionScan& scan, Estimate& e) {
+bool reads_z_mirrored(const MachineProfile& machine, const ZDirectionScan& scan, Estimate& e) {
   switch (machine.kinematics.z_positive) {
   case ZDirection::Up:
     return false;
@@ -179,7 +179,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
       if (auto it = e.tools.find(number); it != e.tools.end()) used.insert(*it);
     RemovalOptions removal_options = options.removal;
     removal_options.source_path = source.path;
-    removal_options.mirror_z = mirror_z(machine, scan.z_direction, e);
+    removal_options.mirror_z = reads_z_mirrored(machine, scan.z_direction, e);
     t = Clock::now();
     // The default stock is sized from the moves as removal sees them.
     StockExtent mirrored;

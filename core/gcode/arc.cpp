@@ -113,4 +113,10 @@ double move_length(const CanonCommand& move) {
                    (move.end.z - move.start.z) * (move.end.z - move.start.z));
 }
 
+bool travels_in_xy(const CanonCommand& move) {
+  constexpr double kMinXyMm = 1e-6;
+  return move.kind == CanonKind::Arc ||
+         std::hypot(move.end.x - move.start.x, move.end.y - move.start.y) > kMinXyMm;
+}
+
 } // namespace ncjoule

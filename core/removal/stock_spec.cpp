@@ -52,7 +52,7 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text,
 void StockExtent::add(const CanonCommand& cmd) {
   if (!(cmd.kind == CanonKind::Feed || cmd.kind == CanonKind::Arc)) return;
   // A level move: travels in XY and starts and ends at one Z (lines, XY arcs).
-  constexpr double kMinXyMm = 1e-6, kSameZMm = 1e-9;
+  constexpr double kSameZMm = 1e-9;
   PerTool& t = tools_[cmd.state.tool];
   auto include = [&](const Pose& p) {
     t.xmin = std::min(t.xmin, p.x), t.xmax = std::max(t.xmax, p.x);
@@ -67,12 +67,10 @@ void StockExtent::add(const CanonCommand& cmd) {
       include(point_on_move(cmd, k / 64.0));
   t.top_start = std::max(t.top_start, cmd.start.z);
   t.length += move_length(cmd);
-  const bool travels_in_xy =
-      cmd.kind == CanonKind::Arc ||
-      std::hypot(cmd.end.x - cmd.start.x, cmd.end.y - cmd.start.y) > kMinXyMm;
-  if (travels_in_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
+  const bool across_xy = travels_in_xy(cmd);
+  if (across_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
     t.top_level = std::max(t.top_level, cmd.start.z);
-  if (travels_in_xy) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
+  if (across_xy) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
   if (levels_.size() < kMaxLevels) {
     levels_.push_back(cmd.start.z);
     levels_.push_back(cmd.end.z);

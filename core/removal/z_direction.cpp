@@ -1,7 +1,6 @@
 // Which way a program's Z runs (ZDirectionScan), and its moves as removal sees them on a machine
 // whose +Z points into the work (mirrored_z).
 #include <algorithm>
-#include <cmath>
 
 #include "ncjoule/removal.hpp"
 
@@ -10,10 +9,7 @@ namespace ncjoule {
 void ZDirectionScan::add(const CanonCommand& c) {
   // Moves across XY only: a plunge or a retract in Z alone starts or ends at the clearance, and
   // says nothing of which side of the cuts it is on.
-  constexpr double kMinXyMm = 1e-6;
-  const bool across_xy =
-      c.kind == CanonKind::Arc || std::hypot(c.end.x - c.start.x, c.end.y - c.start.y) > kMinXyMm;
-  if (!across_xy) return;
+  if (!travels_in_xy(c)) return;
   if (c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) {
     // A helix's or a ramp's Z runs from its start to its end: its ends bound it.
     cut_ = true;

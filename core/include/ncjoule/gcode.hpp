@@ -245,6 +245,9 @@ ArcGeometry arc_geometry(const CanonCommand& arc);
 Pose point_on_move(const CanonCommand& move, double u);
 // Length of a move's path in mm (linear axes only).
 double move_length(const CanonCommand& move);
+// Whether a move travels across X and Y: every arc, and a line whose X or Y changes by more than
+// a micrometre. What tells a level cut or a crossing from a plunge or a retract in Z alone.
+bool travels_in_xy(const CanonCommand& move);
 
 // ---------------------------------------------------------------------------------------------
 // Tool table

@@ -80,6 +80,13 @@ if [ "$quick" = 0 ]; then
   lines=$(wc -l < err.txt)
   [ "$lines" -le 1100 ] || { echo "FAIL 50 MB line: $lines lines of diagnostics"; failures=$((failures + 1)); }
 fi
+# Cases by area, one file each (scripts/attack.d/*.sh): they use case_, $N, $M, $P and $quick,
+# run in $work, and add to $failures.
+for part in "$root"/scripts/attack.d/*.sh; do
+  [ -f "$part" ] || continue
+  # shellcheck source=/dev/null
+  . "$part"
+done
 [ -c /dev/null ] || { echo "FAIL /dev/null is no longer a device"; failures=$((failures + 1)); }
 echo "$failures case(s) did not hold"
 exit "$failures"

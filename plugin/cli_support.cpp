@@ -1,5 +1,6 @@
 #include "cli_support.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -8,26 +9,36 @@
 #include <sstream>
 #include <tuple>
 
+#include "ncjoule/estimate.hpp"
 #include "ncjoule/text_file.hpp"
 
 namespace ncjoule::cli {
 
-std::optional<SourceFile> read_source(const std::string& path) {
-  std::string text;
-  if (path == "-") {
-    std::ostringstream buffer;
-    buffer << std::cin.rdbuf();
-    text = buffer.str();
-  } else {
-    std::vector<Diagnostic> problems;
-    std::optional<std::string> read = read_text_file(path, "an NC file", problems);
-    if (!read) {
-      print_diagnostics(problems);
-      return std::nullopt;
+std::optional<SourceFile> read_source(const std::string& path, std::size_t max_bytes,
+                                      std::size_t memory_budget) {
+  const std::string name = path == "-" ? "<stdin>" : path;
+  std::vector<Diagnostic> problems;
+  std::optional<std::string> text = path == "-"
+                                        ? read_text_stream(stdin, name, problems, max_bytes)
+                                        : read_text_file(path, "an NC file", problems, max_bytes);
+  if (text && memory_budget > 0) {
+    // Lines as make_source() splits them: LF, CRLF or a lone CR ends one.
+    std::size_t lines = 1;
+    for (std::size_t i = 0; i < text->size(); ++i)
+      if ((*text)[i] == '\n' ||
+          ((*text)[i] == '\r' && (i + 1 == text->size() || (*text)[i + 1] != '\n')))
+        ++lines;
+    if (std::string problem = program_memory_problem(text->size(), lines, memory_budget);
+        !problem.empty()) {
+      problems.push_back({Severity::Error, name, 0, 0, std::move(problem)});
+      text.reset();
     }
-    text = std::move(*read);
   }
-  return make_source(path == "-" ? "<stdin>" : path, std::move(text));
+  if (!text) {
+    print_diagnostics(problems);
+    return std::nullopt;
+  }
+  return make_source(name, std::move(*text));
 }
 
 void print_diagnostics(const std::vector<Diagnostic>& diagnostics, std::size_t dropped) {

@@ -6,11 +6,16 @@
 #include <vector>
 
 #include "ncjoule/gcode.hpp"
+#include "ncjoule/text_file.hpp"
 
 namespace ncjoule::cli {
 
-// Reads a file ("-" = standard input) into a SourceFile; prints why on failure.
-std::optional<SourceFile> read_source(const std::string& path);
+// Reads a file ("-" = standard input) into a SourceFile; prints why on failure. A file larger
+// than `max_bytes`, or one whose lines would need more than `memory_budget` bytes to estimate
+// (estimated_program_memory; 0: not checked), is refused before its lines are split.
+std::optional<SourceFile> read_source(const std::string& path,
+                                      std::size_t max_bytes = kDefaultMaxProgramBytes,
+                                      std::size_t memory_budget = 0);
 
 // Prints diagnostics to stderr, one per line, in file:line:column form.
 // Prints each on its own line (control bytes escaped), then how many were left out.

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <unistd.h>
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
@@ -72,9 +71,13 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "Removal grid spacing in mm, 0.001 to 100 (default: from the tools)")
       ->check(finite_between(0.001, 100));
   cmd.add_option("--memory-limit", s.memory_limit_mib,
-                 "Memory the stock model may take, in MiB (default: a quarter of this machine's "
-                 "memory); a --grid that needs more is refused, the automatic one is coarsened")
+                 "Memory the run may take, in MiB (default: a quarter of this machine's memory, "
+                 "or half of the process's ulimit): the program's lines and results first, the "
+                 "stock model the rest; a program or a --grid that needs more is refused, the "
+                 "automatic grid is coarsened")
       ->check(finite_between(1, 1e9));
+  cmd.add_option("--input-limit", s.input_limit_mib, "Largest program read, in MiB (default 512)")
+      ->check(finite_between(0.001, 1e6));
   cmd.add_flag("--no-removal", s.no_removal,
                "Do not simulate material removal (no tools needed; cutting power is zero)");
   cmd.add_option("--co2", s.co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)")
@@ -108,10 +111,13 @@ bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
   }
 }
 
-std::size_t default_memory_budget_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
-  if (pages <= 0 || page <= 0) return kDefaultRemovalMemoryBudget;
-  return std::size_t(pages) * std::size_t(page) / 4;
+std::size_t memory_budget_bytes(const EstimateSettings& s) {
+  return s.memory_limit_mib > 0 ? std::size_t(s.memory_limit_mib * 1024 * 1024)
+                                : default_memory_budget_bytes();
+}
+
+std::size_t input_limit_bytes(const EstimateSettings& s) {
+  return std::size_t(s.input_limit_mib * 1024 * 1024);
 }
 
 // The settings with what the command line left open filled in from the program's own files
@@ -222,9 +228,7 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   }
   options.removal.engine = s.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
   options.removal.grid_mm = s.grid_mm;
-  options.removal.memory_budget_bytes = s.memory_limit_mib > 0
-                                            ? std::size_t(s.memory_limit_mib * 1024 * 1024)
-                                            : default_memory_budget_bytes();
+  options.removal.memory_budget_bytes = memory_budget_bytes(s);
   options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
   options.energy.price_per_kwh = s.price_per_kwh;
   return options;

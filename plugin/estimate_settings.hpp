@@ -9,6 +9,7 @@
 
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/machine.hpp"
+#include "ncjoule/text_file.hpp"
 
 namespace ncjoule::cli {
 
@@ -23,7 +24,8 @@ struct EstimateSettings {
   std::string tool_units;         // units of the tool table: "mm" (empty) or "inch"
   std::string engine = "dexel";
   double grid_mm = 0;
-  double memory_limit_mib = 0; // 0: a quarter of the machine's memory
+  double memory_limit_mib = 0; // 0: default_memory_budget_bytes()
+  double input_limit_mib = double(kDefaultMaxProgramBytes >> 20);
   bool no_removal = false;
   std::optional<double> co2_kg_per_kwh, price_per_kwh;
   // Filled in by estimate_options from the program's .stock file and the user config.
@@ -35,8 +37,9 @@ struct EstimateSettings {
 // --grid, --no-removal, --co2 and --price to a subcommand.
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
 
-// A quarter of this machine's physical memory: the default budget of the stock model.
-std::size_t default_memory_budget_bytes();
+// The memory budget and the input limit the settings give, in bytes.
+std::size_t memory_budget_bytes(const EstimateSettings& settings);
+std::size_t input_limit_bytes(const EstimateSettings& settings);
 
 // Loads the machine profile: --machine, else the user config's, else the generic one (with a
 // note); prints why and returns false when it is wrong.

@@ -22,7 +22,7 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
     auto these = estimate_options(s, file, status);
     if (!these) return status;
     options.push_back(std::move(*these));
-    auto source = read_source(file);
+    auto source = read_source(file, input_limit_bytes(s), memory_budget_bytes(s));
     if (!source) return kInputError;
     sources.push_back(std::move(*source));
   }
@@ -41,9 +41,11 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
     for (const Diagnostic& d : p.estimate.diagnostics)
       error = error || d.severity == Severity::Error;
     if (p.estimate.failed)
-      std::cerr << "ncjoule: " << p.source.path
-                << " cannot be estimated (see above); --no-removal estimates it without the "
-                   "material removal stage\n";
+      std::cerr << "ncjoule: " << p.source.path << " cannot be estimated (see above)"
+                << (p.estimate.removal_failed ? "; --no-removal estimates it without the "
+                                                "material removal stage"
+                                              : "")
+                << '\n';
     if (error) status = kInputError;
   }
   return status;

@@ -6,9 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include "long_arc_check.hpp"
 #include "ncjoule/log.hpp"
+#include "ncjoule/text_file.hpp"
 #include "result_fold.hpp"
 
 namespace ncjoule {
@@ -126,7 +129,73 @@ PowerConstants effective_power(const MachineProfile& machine, const EstimateOpti
   return out;
 }
 
+// Refuses what is not a G-code program before it is interpreted: bytes in an encoding ncjoule
+// does not read (a UTF-16 file would be read as NULs between letters), and a program larger
+// than the memory budget allows. True when the program can be run.
+bool check_program(const SourceFile& source, std::size_t budget, Estimate& e) {
+  if (const std::string what = non_text_encoding(source.text); !what.empty()) {
+    const bool binary = what == "binary data";
+    e.diagnostics.push_back(
+        {Severity::Error, source.path, 0, 0,
+         "is " + what + ", not a G-code program" +
+             (binary ? std::string()
+                     : ": ncjoule reads ASCII or UTF-8, as controllers do; save it so (most "
+                       "editors' 'Save as' offers the encoding)")});
+    return false;
+  }
+  if (std::string problem = program_memory_problem(source.text.size(), source.lines.size(), budget);
+      !problem.empty()) {
+    e.diagnostics.push_back({Severity::Error, source.path, 0, 0, std::move(problem)});
+    return false;
+  }
+  return true;
+}
+
+// A text with lines of code but not one word a controller reads (a passwd file, prose) holds no
+// G-code: refused rather than annotated as a program that takes no time.
+// The interpreter's warnings about each of its words say nothing more: only the first is kept.
+void check_holds_gcode(const InterpretResult& run, Estimate& e) {
+  if (run.word_blocks > 0 || run.blocks == 0) return;
+  const auto first = std::find_if(e.diagnostics.begin(), e.diagnostics.end(),
+                                  [](const Diagnostic& d) { return d.line > 0; });
+  std::vector<Diagnostic> kept;
+  if (first != e.diagnostics.end()) kept.push_back(*first);
+  kept.push_back({Severity::Error, e.file, 0, 0,
+                  "holds no G-code: not one of its " + std::to_string(run.blocks) +
+                      " lines of text has a word a controller reads (G1, X10, M3, ...)"});
+  e.diagnostics = std::move(kept);
+  e.diagnostics_dropped = 0;
+  e.failed = true;
+}
+
 } // namespace
+
+std::size_t estimated_program_memory(std::size_t bytes, std::size_t lines) {
+  // Measured: 145 bytes a line for the estimate of a file of empty lines, 225 for annotating
+  // real programs (bench/scale.sh); the annotated copy is about four times the text.
+  constexpr double kPerLine = 240, kPerByte = 5;
+  return std::size_t(std::min(kPerLine * double(lines) + kPerByte * double(bytes), 1e18));
+}
+
+std::string program_memory_problem(std::size_t bytes, std::size_t lines, std::size_t budget) {
+  const std::size_t needed = estimated_program_memory(bytes, lines);
+  if (needed <= budget) return {};
+  return "its " + std::to_string(lines) + " lines need about " + std::to_string(needed >> 20) +
+         " MiB, over the memory budget of " + std::to_string(budget >> 20) +
+         " MiB (--memory-limit sets it)";
+}
+
+std::size_t default_memory_budget_bytes() {
+  std::size_t budget = kDefaultRemovalMemoryBudget;
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
+  if (pages > 0 && page > 0) budget = std::size_t(pages) * std::size_t(page) / 4;
+  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    struct rlimit limit {};
+    if (getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      budget = std::min(budget, std::size_t(limit.rlim_cur / 2));
+  }
+  return budget;
+}
 
 Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
                           const EstimateOptions& options) {
@@ -141,6 +210,13 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   interpreter.fallback_dialect = find_dialect(machine.fallback_dialect);
   interpreter.tools = options.tool_table;
 
+  const std::size_t budget = options.removal.memory_budget_bytes
+                                 ? options.removal.memory_budget_bytes
+                                 : default_memory_budget_bytes();
+  if (!check_program(source, budget, e)) {
+    e.failed = true;
+    return e;
+  }
   e.power = effective_power(machine, options, e);
 
   // 1. The first pass. Stage times go to the log (-v): the benchmarks read them.
@@ -153,7 +229,10 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.dialect_reason = run.dialect_reason;
   e.blocks = run.blocks;
   e.commands = run.commands;
+  e.program_end = run.program_end;
   add_diagnostics(e, std::move(run.diagnostics), source.path);
+  check_holds_gcode(run, e);
+  if (e.failed) return e;
   if (auto long_arcs = scan.long_arcs.verdict(source.path))
     add_diagnostics(e, {std::move(*long_arcs)}, source.path);
   logger().info("scan: {} blocks, {} commands in {:.3f} s", run.blocks, scan.commands,
@@ -179,6 +258,10 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
       if (auto it = e.tools.find(number); it != e.tools.end()) used.insert(*it);
     RemovalOptions removal_options = options.removal;
     removal_options.source_path = source.path;
+    // The stock model gets what the program's own memory leaves of the budget.
+    removal_options.memory_budget_bytes =
+        std::max(budget - estimated_program_memory(source.text.size(), source.lines.size()),
+                 std::size_t(16) << 20);
     removal_options.mirror_z = reads_z_mirrored(machine, scan.z_direction, e);
     t = Clock::now();
     // The default stock is sized from the moves as removal sees them.
@@ -196,7 +279,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     } catch (const std::exception& ex) {
       e.diagnostics.push_back({Severity::Error, source.path, 0, 0,
                                std::string("material removal failed: ") + ex.what()});
-      e.failed = true;
+      e.failed = e.removal_failed = true;
       return e;
     }
     logger().info("stock: {} columns in {:.3f} s", removal->grid().columns(), seconds_since(t));
@@ -233,7 +316,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   } catch (const std::exception& ex) {
     e.diagnostics.push_back(
         {Severity::Error, source.path, 0, 0, std::string("material removal failed: ") + ex.what()});
-    e.failed = true;
+    e.failed = e.removal_failed = true;
     return e;
   }
   if (removal) add_diagnostics(e, removal->summary().diagnostics, source.path);

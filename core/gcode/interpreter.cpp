@@ -247,9 +247,11 @@ InterpretResult Interpreter::run() {
       // grbl settings lines and deleted blocks do nothing.
     } else if (block_.has_o) {
       ++result_.blocks;
+      ++result_.word_blocks;
       handle_o_word(block_);
     } else if (block_.has_code()) {
       ++result_.blocks;
+      if (!block_.words.empty() || !block_.assignments.empty()) ++result_.word_blocks;
       if (evaluate_words(block_, values)) execute(block_, values);
     } else if (!block_.comments.empty()) {
       for (const Comment& c : block_.comments) {
@@ -275,6 +277,7 @@ InterpretResult Interpreter::run() {
     warning(0, "the program has no M2 or M30: it ends at the end of the file");
     result_.completed = true;
   }
+  result_.program_end = finished_;
   result_.commands = command_count_;
   return std::move(result_); // run() is called once
 }

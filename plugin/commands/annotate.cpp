@@ -14,6 +14,7 @@
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "estimate_settings.hpp"
+#include "in_place.hpp"
 #include "ncjoule/annotate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
@@ -27,6 +28,7 @@ struct AnnotateCliOptions {
   std::string file;
   std::string output; // empty: standard output, unless in_place
   bool in_place = false;
+  bool follow_symlinks = false; // --in-place on a link replaces the file it points to
   bool no_header = false;
   std::string fields; // --fields T,E,...; empty: all (or the compact set)
   bool compact = false;
@@ -43,7 +45,16 @@ int run_annotate(const AnnotateCliOptions& o) {
   if (!options) return status;
   MachineProfile machine;
   if (!load_machine(o.settings, machine)) return kInputError;
-  const auto input = read_source(o.file);
+  // A file replaced in place must be one no other program is still writing.
+  FileStamp stamp;
+  if (o.in_place) {
+    if (const std::string why = in_place_refusal(o.file, o.follow_symlinks, stamp); !why.empty()) {
+      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      return kOutputError;
+    }
+  }
+  const auto input =
+      read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!input) return kInputError;
 
   ProgressBar progress("estimating", 1);
@@ -73,16 +84,33 @@ int run_annotate(const AnnotateCliOptions& o) {
               << " could not be estimated (see above); nothing was written\n";
     return kInputError;
   }
-  const std::string& text = result.text;
-  const int written = write_program(o.file, o.output, o.in_place, text);
-  if (written == kOk && result.has_errors) {
-    // Errors are what the controller itself would refuse: the program is still annotated (the
-    // header lists them), and the exit status says so.
+  // Errors are what the controller itself would refuse: the program is still annotated (the
+  // header lists them), and the exit status says so.
+  const int done = result.has_errors ? kInputError : kOk;
+  const char* with_errors =
+      result.has_errors ? ", with errors a controller would refuse (see above)" : "";
+  if (o.in_place) {
+    if (result.text == input->text) {
+      std::cerr << "ncjoule: " << o.file << " unchanged: already annotated this way" << with_errors
+                << '\n';
+      return done;
+    }
+    if (const std::string why = in_place_changed(o.file, stamp, result.estimate.program_end);
+        !why.empty()) {
+      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      return kOutputError;
+    }
+  }
+  if (const int written = write_program(o.file, o.output, o.in_place, result.text); written != kOk)
+    return written;
+  if (o.in_place)
+    std::cerr << "ncjoule: annotated " << o.file << with_errors << '\n';
+  else if (!o.output.empty() && o.output != "-")
+    std::cerr << "ncjoule: wrote " << o.output << with_errors << '\n';
+  else if (result.has_errors)
     std::cerr << "ncjoule: " << input->path
               << " has errors a controller would refuse (see above); annotated anyway\n";
-    return kInputError;
-  }
-  return written;
+  return done;
 }
 
 const Registration registration([](CLI::App& app, int& exit_code) {
@@ -93,7 +121,14 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_option("file", options->file, "NC program (- for standard input)")->required();
   CLI::Option* output = cmd->add_option("-o,--output", options->output,
                                         "Annotated program (- for standard output, the default)");
-  cmd->add_flag("-i,--in-place", options->in_place, "Replace the input file")->excludes(output);
+  CLI::Option* in_place =
+      cmd->add_flag("-i,--in-place", options->in_place,
+                    "Replace the input file (refused while another program is still writing it, "
+                    "or when it is a symbolic link)")
+          ->excludes(output);
+  cmd->add_flag("--follow-symlinks", options->follow_symlinks,
+                "With --in-place on a symbolic link: replace the file it points to")
+      ->needs(in_place);
   add_estimate_settings(*cmd, options->settings);
   cmd->add_flag("--no-header", options->no_header, "Leave out the summary header");
   cmd->add_option("--fields", options->fields,
@@ -102,10 +137,12 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_flag("--compact", options->compact,
                 "Smaller annotations: T, E, MRR and OP, zero values left out (about 60% of the "
                 "bytes the default adds)");
-  cmd->footer("Exit codes: 0 written; 1 bad command line; 2 bad input: unreadable, or a program "
-              "with errors its controller would refuse (written all the same when it could be "
-              "estimated, its header listing them); 3 the output could not be written (the "
-              "target is untouched).");
+  cmd->footer(
+      "Exit codes: 0 written; 1 bad command line; 2 bad input: unreadable or not G-code (nothing "
+      "is written), or a program with errors its controller would refuse (annotated all the "
+      "same when it could be estimated, its header listing them; the last line says "
+      "'annotated FILE, with errors'); 3 nothing was written: the output could not be written, "
+      "or --in-place found the file still being written or changed (the file is untouched).");
   cmd->callback([options, &exit_code] { exit_code = run_annotate(*options); });
 });
 

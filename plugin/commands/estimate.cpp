@@ -108,7 +108,7 @@ int run_estimate(const EstimateCliOptions& o) {
   if (!options) return status;
   MachineProfile machine;
   if (!load_machine(o.settings, machine)) return kInputError;
-  auto source = read_source(o.file);
+  auto source = read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!source) return kInputError;
 
   ProgressBar progress("estimating", 1);
@@ -119,9 +119,11 @@ int run_estimate(const EstimateCliOptions& o) {
   progress.finish();
   if (e.failed) {
     print_diagnostics(e.diagnostics, e.diagnostics_dropped);
-    std::cerr << "ncjoule: " << source->path
-              << " cannot be estimated (see above); --no-removal estimates it without the "
-                 "material removal stage\n";
+    std::cerr << "ncjoule: " << source->path << " cannot be estimated (see above)"
+              << (e.removal_failed
+                      ? "; --no-removal estimates it without the material removal stage"
+                      : "")
+              << '\n';
     return kInputError;
   }
   if (o.json) {

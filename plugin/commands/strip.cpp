@@ -7,6 +7,7 @@
 
 #include "cli_support.hpp"
 #include "command_registry.hpp"
+#include "in_place.hpp"
 #include "ncjoule/annotate.hpp"
 #include "output_file.hpp"
 
@@ -17,6 +18,8 @@ struct StripCliOptions {
   std::string file;
   std::string output; // empty: standard output, unless in_place
   bool in_place = false;
+  bool follow_symlinks = false;
+  double input_limit_mib = double(kDefaultMaxProgramBytes >> 20);
 };
 
 int run_strip(const StripCliOptions& o) {
@@ -24,11 +27,26 @@ int run_strip(const StripCliOptions& o) {
     std::cerr << "ncjoule: --in-place needs a file, not standard input\n";
     return kUsage;
   }
-  const auto input = read_source(o.file);
+  FileStamp stamp;
+  if (o.in_place) {
+    if (const std::string why = in_place_refusal(o.file, o.follow_symlinks, stamp); !why.empty()) {
+      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      return kOutputError;
+    }
+  }
+  const auto input = read_source(o.file, std::size_t(o.input_limit_mib * 1024 * 1024));
   if (!input) return kInputError;
   const std::string text = strip(input->text);
   // A file without annotations is left alone, so that its time stamp does not change.
   if (o.in_place && text == input->text) return kOk;
+  // Stripping takes no time to speak of: only a writer that came or a change since the read
+  // are looked for, not a quiet period.
+  if (o.in_place) {
+    if (const std::string why = in_place_changed(o.file, stamp, true); !why.empty()) {
+      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      return kOutputError;
+    }
+  }
   return write_program(o.file, o.output, o.in_place, text);
 }
 
@@ -39,9 +57,20 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_option("file", options->file, "Annotated NC program (- for standard input)")->required();
   CLI::Option* output = cmd->add_option("-o,--output", options->output,
                                         "Stripped program (- for standard output, the default)");
-  cmd->add_flag("-i,--in-place", options->in_place, "Replace the input file")->excludes(output);
+  CLI::Option* in_place =
+      cmd->add_flag("-i,--in-place", options->in_place,
+                    "Replace the input file (refused while another program is still writing it, "
+                    "or when it is a symbolic link)")
+          ->excludes(output);
+  cmd->add_flag("--follow-symlinks", options->follow_symlinks,
+                "With --in-place on a symbolic link: replace the file it points to")
+      ->needs(in_place);
+  cmd->add_option("--input-limit", options->input_limit_mib,
+                  "Largest program read, in MiB (default 512)")
+      ->check(CLI::Range(0.001, 1e6));
   cmd->footer("Exit codes: 0 written; 1 bad command line; 2 unreadable input; "
-              "3 the output could not be written (the target is untouched).");
+              "3 nothing was written: the output could not be written, or --in-place found the "
+              "file still being written or changed (the file is untouched).");
   cmd->callback([options, &exit_code] { exit_code = run_strip(*options); });
 });
 

@@ -48,6 +48,9 @@ struct EstimateOptions {
   // Keep the operating trace of the whole program in Estimate::trace (calibration needs it;
   // memory grows with the program).
   bool keep_trace = false;
+  // The memory budget of the run is removal.memory_budget_bytes (0: default_memory_budget_bytes):
+  // the program's own memory (estimated_program_memory) is taken out of it first, and the stock
+  // model gets the rest.
   // Bounds on what the program may make the interpreter do (gcode.hpp).
   InterpreterLimits limits;
   // Path samples of one move at most (PlanOptions::max_samples_per_move).
@@ -190,6 +193,7 @@ struct Estimate {
   std::string dialect_reason;
   std::size_t blocks = 0;   // blocks the interpreter executed
   std::size_t commands = 0; // canonical commands they made
+  bool program_end = false; // ended at M2/M30 or a closing '%', not at the end of the file
   double time_s = 0;        // the program's time
   bool inch = false;        // the program's units: its first G20/G21 (else those it starts in)
   TimeSplit time;
@@ -207,7 +211,18 @@ struct Estimate {
   std::vector<Diagnostic> diagnostics; // interpreter, planner, removal and energy, in order
   std::size_t diagnostics_dropped = 0; // beyond the cap on diagnostics
   bool failed = false;                 // an error made the numbers meaningless (see diagnostics)
+  bool removal_failed = false;         // ... and it was the material removal stage's
 };
+
+// The memory (bytes) the pipeline holds for a program of `bytes` bytes in `lines` lines besides
+// the stock model: the text and its line positions, a result per line, and an annotated copy.
+// Checked against the run's memory budget before anything else is allocated.
+std::size_t estimated_program_memory(std::size_t bytes, std::size_t lines);
+// Why such a program cannot be estimated within `budget` bytes; empty when it can.
+std::string program_memory_problem(std::size_t bytes, std::size_t lines, std::size_t budget);
+// The memory budget of a run when none is given: a quarter of this machine's physical memory,
+// or half of what this process may take (ulimit -v, -d) where that is less.
+std::size_t default_memory_budget_bytes();
 
 // Runs the pipeline. Never throws for bad input: problems are diagnostics, and `failed` is set
 // only when no estimate could be made (the removal stage failed outright). What cannot be

@@ -297,6 +297,10 @@ struct InterpretResult {
   std::vector<Diagnostic> diagnostics;
   bool completed = false; // reached program end or end of file without a fatal error
   std::size_t blocks = 0; // blocks executed
+  // Blocks with at least one word a controller reads (G1, X10, M3, an O-word, #1=2): a text that
+  // has none holds no G-code, whatever else it holds (words of several letters, stray bytes).
+  std::size_t word_blocks = 0;
+  bool program_end = false; // ended at M2/M30 or a closing '%', not at the end of the file
   std::size_t commands = 0;
 };
 

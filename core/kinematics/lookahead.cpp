@@ -6,10 +6,10 @@
 
 namespace ncjoule::kinematics_detail {
 
-void plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
+std::size_t plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
   const std::size_t from = front.final_items;
   const std::size_t end = items.size();
-  if (from >= end) return;
+  if (from >= end) return 0;
   // Backward, as if the path stopped after the last item: the fastest each item may enter and
   // still reach the speed the items after it allow. An item whose entry is held by its own cap,
   // whatever speed it may yet have to leave at, keeps it whatever follows, and so does
@@ -39,10 +39,12 @@ void plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
     m.exit = std::min({m.exit, m.vmax, reachable_speed(m.entry, m.length, m.accel, m.jerk)});
     previous_exit = m.exit;
   }
-  if (final_end == from) return;
+  const std::size_t visited = (end - from) + (final_end - from);
+  if (final_end == from) return visited;
   front.final_items = final_end;
   front.junction_before = items[final_end - 1].junction_after;
   front.exit_before = previous_exit;
+  return visited;
 }
 
 } // namespace ncjoule::kinematics_detail

@@ -115,6 +115,7 @@ struct Planner::Impl {
   // Step 3's running state.
   double clock = 0;
   double path_speed = 0; // speed of the path at the current point (for zero-length moves)
+  Planner::Work work;
 
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 };
@@ -201,7 +202,7 @@ void Planner::Impl::limit_and_chain(WaitingCommand& w) {
 }
 
 void Planner::Impl::look_ahead(bool at_end) {
-  plan_speeds(items, front, at_end);
+  work.items_planned += plan_speeds(items, front, at_end);
 }
 
 // Whether a command's timing is final: a move's speeds are, and so is what LinuxCNC's task adds
@@ -214,20 +215,26 @@ bool Planner::Impl::ready(const WaitingCommand& w) const {
 }
 
 void Planner::Impl::send_ready() {
-  while (!waiting.empty() && ready(waiting.front())) {
+  work.most_items = std::max(work.most_items, items.size() - items.first());
+  for (;;) {
+    ++work.commands_examined;
+    if (waiting.empty() || !ready(waiting.front())) break;
     WaitingCommand& w = waiting.front();
     time(w);
     sink(w.command, w.timed);
     waiting.pop_front();
     ++first_waiting;
   }
-  // Items no waiting command is, or may yet be, charged with.
+  // Items no waiting command is, or may yet be, charged with. Only the front need be looked at,
+  // never the whole queue (zero-length moves pile up behind a move waiting for the next one, and
+  // a scan of them on every command made such a run quadratic): what is not ready is a chained
+  // move, charges come in program order and items in path order, so the front's charge is the
+  // oldest; and what the moves not charged yet may be charged with, the path builder says.
   std::size_t in_use = front.final_items;
-  for (const WaitingCommand& w : waiting)
-    if (w.plan.timing == MoveTiming::Chained && w.plan.charged) {
-      in_use = std::min<std::size_t>(in_use, w.plan.item);
-      break; // charges come in order
-    }
+  ++work.commands_examined;
+  if (!waiting.empty() && waiting.front().plan.timing == MoveTiming::Chained &&
+      waiting.front().plan.charged)
+    in_use = std::min<std::size_t>(in_use, waiting.front().plan.item);
   if (linuxcnc_path) in_use = std::min(in_use, linuxcnc_path->oldest_item_in_use());
   items.drop_before(in_use);
 }
@@ -325,6 +332,10 @@ double Planner::finish() {
 
 std::vector<Diagnostic> Planner::take_diagnostics() {
   return impl_->warnings.take();
+}
+
+Planner::Work Planner::work() const {
+  return impl_->work;
 }
 
 Timeline plan(const std::vector<CanonCommand>& commands, const MachineProfile& machine,

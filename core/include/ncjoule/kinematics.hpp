@@ -74,6 +74,15 @@ public:
   // Warnings about moves and codes so far (each kind once, with a count).
   std::vector<Diagnostic> take_diagnostics();
 
+  // The work done so far, counted, for tests that it stays linear in the program whatever the
+  // program (a run of zero-length moves, a long stretch with no point of known speed).
+  struct Work {
+    std::size_t items_planned = 0;     // look-ahead items visited by the passes over the window
+    std::size_t commands_examined = 0; // waiting commands looked at to time or release them
+    std::size_t most_items = 0;        // look-ahead items held at once
+  };
+  Work work() const;
+
 private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

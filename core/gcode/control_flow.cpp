@@ -135,11 +135,7 @@ void Interpreter::o_call(const Block& b) {
     args.push_back(v);
     p += len;
   }
-  auto it = labels_.find(label);
-  std::optional<std::size_t> sub;
-  if (it != labels_.end())
-    for (auto& [line, k] : it->second)
-      if (k == "sub") sub = line;
+  const std::optional<std::size_t> sub = labels_.last(label, "sub");
   if (!sub) {
     error(col, "subroutine o" + label +
                    " is not defined in this file (subroutine files on a search path are not "

@@ -171,34 +171,19 @@ void Interpreter::scan_labels() {
       const auto [end, ec] = std::from_chars(first, last, number);
       if (ec == std::errc() && end != first) program_numbers_.emplace(number, i);
     } else {
-      labels_[b.o_label].emplace_back(i, b.o_keyword);
+      labels_.add(b.o_label, b.o_keyword, i);
     }
   }
 }
 
 std::optional<std::size_t> Interpreter::find_next(const std::string& label, std::size_t after,
                                                   std::initializer_list<const char*> keys) const {
-  auto it = labels_.find(label);
-  if (it == labels_.end()) return std::nullopt;
-  for (auto& [line, kw] : it->second) {
-    if (line <= after) continue;
-    for (const char* k : keys)
-      if (kw == k) return line;
-  }
-  return std::nullopt;
+  return labels_.next(label, after, keys);
 }
 
 std::optional<std::size_t> Interpreter::find_prev(const std::string& label, std::size_t before,
                                                   std::initializer_list<const char*> keys) const {
-  auto it = labels_.find(label);
-  if (it == labels_.end()) return std::nullopt;
-  std::optional<std::size_t> found;
-  for (auto& [line, kw] : it->second) {
-    if (line >= before) break;
-    for (const char* k : keys)
-      if (kw == k) found = line;
-  }
-  return found;
+  return labels_.previous(label, before, keys);
 }
 
 InterpretResult Interpreter::run() {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "block.hpp"
+#include "label_index.hpp"
 #include "parameters.hpp"
 
 namespace ncjoule::detail {
@@ -194,8 +195,8 @@ private:
   bool finished_ = false;
   bool seen_percent_ = false;
   std::vector<Frame> frames_;
-  std::unordered_map<std::string, std::vector<std::pair<std::size_t, std::string>>> labels_;
-  std::unordered_map<long, std::size_t> program_numbers_;          // Fanuc O-number -> line
+  LabelIndex labels_;                                     // where each O-word label is, by keyword
+  std::unordered_map<long, std::size_t> program_numbers_; // Fanuc O-number -> line
   std::optional<std::unordered_map<long, std::size_t>> n_numbers_; // Haas M97 targets
   std::size_t loop_iterations_ = 0;                                // backward jumps of loops
   std::size_t blocks_run_ = 0;

@@ -124,6 +124,18 @@ Box3 TriangleMesh::bounds() const {
   return b;
 }
 
+double TriangleMesh::crossings_per_column() const {
+  const Box3 b = bounds();
+  const double area = (b.xmax - b.xmin) * (b.ymax - b.ymin);
+  if (!(area > 0)) return 0;
+  double covered = 0; // the triangles' areas seen from above
+  for (const Triangle& t : triangles)
+    covered += std::abs((t.v[1][0] - t.v[0][0]) * (t.v[2][1] - t.v[0][1]) -
+                        (t.v[1][1] - t.v[0][1]) * (t.v[2][0] - t.v[0][0])) /
+               2;
+  return covered / area;
+}
+
 std::unique_ptr<StockShape> make_mesh_stock(TriangleMesh mesh, std::string description,
                                             std::size_t* open_columns) {
   return std::make_unique<MeshStock>(std::move(mesh), std::move(description), open_columns);

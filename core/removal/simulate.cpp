@@ -61,13 +61,19 @@ std::string mib(std::size_t bytes) {
 } // namespace
 
 std::size_t estimated_removal_memory(EngineKind engine, const GridFrame& grid,
-                                     StockSpec::Kind stock_kind) {
+                                     StockSpec::Kind stock_kind, double crossings_per_column) {
   const double columns = double(grid.nx) * double(grid.ny);
+  // Filling from a mesh sorts every crossing (column, z) in one array and pairs them into
+  // intervals: held together for a moment, whichever engine keeps the stock (the array of
+  // crossings at up to twice its size, as it grows).
+  const double filling = stock_kind == StockSpec::Kind::Stl
+                             ? columns * crossings_per_column * (2 * 16 + sizeof(ZInterval) / 2)
+                             : 0;
   if (engine == EngineKind::Voxel) {
     const double layers = double(voxel_layer_bounds(grid).size() - 1);
-    return std::size_t(std::min(columns * layers, 1e18));
+    return std::size_t(std::min(columns * layers + filling, 1e18));
   }
-  return std::size_t(std::min(columns * double(dexel_column_bytes(stock_kind)), 1e18));
+  return std::size_t(std::min(columns * double(dexel_column_bytes(stock_kind)) + filling, 1e18));
 }
 
 RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& extent,
@@ -109,6 +115,7 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     const std::string text = "STL " + spec.stl_path + " (" +
                              std::to_string(mesh->triangles.size()) + " triangles, bounds " +
                              format_box(mesh->bounds()) + ")";
+    crossings_ = mesh->crossings_per_column();
     if (options.mirror_z) // crossings pair up along each column: the winding does not matter
       for (Triangle& t : mesh->triangles)
         for (auto& vertex : t.v)
@@ -144,6 +151,19 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     diag(Severity::Error, 0, "stock has no volume: nothing is removed");
     return;
   }
+  // A stock wider than any machine is in the wrong units or at absurd coordinates: no grid
+  // helps, so none is tried.
+  const double widest =
+      std::max({bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin, bounds.zmax - bounds.zmin});
+  if (!(widest <= kMaxStockWidthMm)) {
+    char size[64] = "too wide to measure";
+    if (std::isfinite(widest)) std::snprintf(size, sizeof size, "%.3g mm wide", widest);
+    diag(Severity::Error, 0,
+         std::string("stock is ") + size + ", more than any machine's travel (" +
+             std::to_string(int(kMaxStockWidthMm / 1000)) +
+             " m): check its units and coordinates; nothing is removed");
+    return;
+  }
 
   // The grid: the one given, or the automatic one within the cell caps and the memory budget.
   const std::size_t budget =
@@ -175,7 +195,7 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   }
   grid_ = grid_at(spacing);
   const bool given = options.grid_mm > 0;
-  const std::size_t needed = estimated_removal_memory(options.engine, grid_, spec.kind);
+  const std::size_t needed = estimated_removal_memory(options.engine, grid_, spec.kind, crossings_);
   if (given && needed > budget) {
     diag(Severity::Error, 0,
          "removal grid of " + format_mm3(spacing) + " mm over the stock needs about " +
@@ -186,10 +206,11 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   if (!given && (cells(grid_) > cell_limit || needed > budget)) {
     const double power = options.engine == EngineKind::Voxel ? 1.0 / 3.0 : 0.5;
     while (cells(grid_) > cell_limit ||
-           estimated_removal_memory(options.engine, grid_, spec.kind) > budget) {
-      const double over = std::max(
-          cells(grid_) / cell_limit,
-          double(estimated_removal_memory(options.engine, grid_, spec.kind)) / double(budget));
+           estimated_removal_memory(options.engine, grid_, spec.kind, crossings_) > budget) {
+      const double over =
+          std::max(cells(grid_) / cell_limit,
+                   double(estimated_removal_memory(options.engine, grid_, spec.kind, crossings_)) /
+                       double(budget));
       spacing *= std::max(1.01, std::pow(over, power));
       grid_ = grid_at(spacing);
     }

@@ -206,3 +206,59 @@ TEST_CASE("a bad STL is a diagnostic naming the file and, in ASCII, the line") {
   REQUIRE(problems.size() == 1);
   CHECK(problems[0].file == "no/such/file.stl");
 }
+
+TEST_CASE("an STL's crossings count in its memory: stacked shells need more than a solid") {
+  // One square as two triangles, seen from above: a vertical line meets one triangle.
+  auto square = [](double z) {
+    const double corners[2][3][3] = {{{0, 0, z}, {10, 0, z}, {10, 10, z}},
+                                     {{0, 0, z}, {10, 10, z}, {0, 10, z}}};
+    std::vector<Triangle> t(2);
+    for (int k = 0; k < 2; ++k)
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c)
+          t[k].v[v][c] = corners[k][v][c];
+    return t;
+  };
+  TriangleMesh slab; // top and bottom: a closed slab's two crossings per column
+  for (double z : {0.0, -5.0})
+    for (const Triangle& t : square(z))
+      slab.triangles.push_back(t);
+  CHECK(slab.crossings_per_column() == doctest::Approx(2));
+  TriangleMesh stacked; // forty layers over the same square, as a 4 KB ASCII STL can hold
+  for (int k = 0; k < 40; ++k)
+    for (const Triangle& t : square(-k))
+      stacked.triangles.push_back(t);
+  CHECK(stacked.crossings_per_column() == doctest::Approx(40));
+
+  const GridFrame grid = make_grid(stacked.bounds(), 0.01); // a million columns
+  const std::size_t box = estimated_removal_memory(EngineKind::Dexel, grid, StockSpec::Kind::Box);
+  const std::size_t solid =
+      estimated_removal_memory(EngineKind::Dexel, grid, StockSpec::Kind::Stl, 2);
+  const std::size_t layers =
+      estimated_removal_memory(EngineKind::Dexel, grid, StockSpec::Kind::Stl, 40);
+  CHECK(solid > box);
+  // Each of the 40 crossings of a million columns is 16 bytes in an array that may be twice its
+  // size, and half an interval: 1.6 GB at least.
+  CHECK(layers > std::size_t(40) * 1'000'000 * 40);
+  CHECK(estimated_removal_memory(EngineKind::Voxel, grid, StockSpec::Kind::Stl, 40) >
+        std::size_t(40) * 1'000'000 * 40);
+}
+
+TEST_CASE("a stock wider than any machine is refused before a grid is tried, naming its size") {
+  for (const char* spec :
+       {"box:0,0,-10,200000,10,0", "box:-1e300,-1e300,-1e300,1e300,1e300,1e300"}) {
+    CAPTURE(spec);
+    std::vector<Diagnostic> problems;
+    const auto stock = parse_stock_spec(spec, &problems);
+    REQUIRE(stock);
+    StockExtent extent;
+    const RemovalSimulator sim(*stock, extent, {}, RemovalOptions{});
+    CHECK_FALSE(sim.ready());
+    bool said = false;
+    for (const Diagnostic& d : sim.summary().diagnostics)
+      said = said || (d.severity == Severity::Error &&
+                      d.message.find("more than any machine's travel") != std::string::npos &&
+                      d.message.find("units") != std::string::npos);
+    CHECK(said);
+  }
+}

@@ -190,6 +190,10 @@ struct Triangle {
 struct TriangleMesh {
   std::vector<Triangle> triangles;
   Box3 bounds() const;
+  // How many triangles a vertical line through the mesh's XY bounds meets, on average: 2 for a
+  // closed solid with no overhang, more for stacked or overlapping shells. Each meeting is a
+  // crossing to sort while the stock is filled, so memory grows with it.
+  double crossings_per_column() const;
 };
 // Binary or ASCII STL, in mm. On failure returns std::nullopt with an error in `diagnostics`
 // (the file, and the line of an ASCII STL).
@@ -336,9 +340,13 @@ double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Too
 // arcs).
 double recommended_sample_step(const std::map<int, Tool>& tools, double grid_mm);
 // The memory (bytes) a removal engine would take over `grid` for the stock: what the budget is
-// checked against before anything is allocated.
+// checked against before anything is allocated. A mesh stock's crossings
+// (TriangleMesh::crossings_per_column) are counted too: they are held while it is filled.
 std::size_t estimated_removal_memory(EngineKind engine, const GridFrame& grid,
-                                     StockSpec::Kind stock_kind);
+                                     StockSpec::Kind stock_kind, double crossings_per_column = 2);
+// The widest stock ncjoule takes, in mm: more than any machine's travel, so that a stock in the
+// wrong units or at absurd coordinates is said to be so, before any grid is tried on it.
+inline constexpr double kMaxStockWidthMm = 100'000;
 
 // Removal results for one timed command (parallel to Timeline::commands).
 struct CommandRemoval {
@@ -403,6 +411,7 @@ private:
   std::unique_ptr<StockShape> stock_;
   std::unique_ptr<RemovalEngine> engine_;
   GridFrame grid_;
+  double crossings_ = 2; // of a mesh stock: TriangleMesh::crossings_per_column
   double sample_step_ = 0;
   RemovalResult totals_; // commands left empty
   bool warned_no_samples_ = false;

@@ -2,7 +2,7 @@
   ncjoule hook for Autodesk post processors (Fusion, Inventor CAM, HSM): append this whole file
   to the end of a vendor .cps post. After the post has written its program(s), the hook runs
 
-      ncjoule annotate <file> --machine <profile> --in-place [--stock <text>] [<extra arguments>]
+      ncjoule annotate --machine=<profile> --in-place [--stock=<text>] [<extra arguments>] -- <file>
 
   on every NC file the post wrote, so each block carries its predicted time, MRR, power and
   energy as a comment. See README.md next to this file.
@@ -17,12 +17,18 @@
       ncjouleMachine    the machine profile (.toml); a relative path is looked up next to the post
       ncjouleStock      the stock, as ncjoule's --stock text (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX
                         or an .stl file); empty: the box of the cutting moves
-      ncjouleArguments  further arguments for `ncjoule annotate` (e.g. --dialect fanuc)
+      ncjouleArguments  further arguments for `ncjoule annotate` (e.g. --dialect fanuc), split at
+                        blanks and never evaluated
   - an onTerminate() that first runs the post's own onTerminate() (if it has one) and then
     annotates the main output (getOutputPath()) and every other file of the same extension the
     post opened with redirectToFile() or new TextFile(path, true, ...) (subprograms, one file per
     operation or tool). A post that writes files some other way can name them with
     ncjouleAddOutputFile(path).
+
+  Every argument is quoted for the command line execute() runs (the MS C runtime's rules on
+  Windows, a shell's on macOS and Linux); a value that cannot be passed safely (a newline; on
+  Windows through a .bat or .cmd, a quote, % or !) is refused with a warning and the file is left
+  as the post wrote it.
 */
 
 var ncjouleHookVersion = "1";
@@ -224,10 +230,6 @@ function ncjouleHasFolder(path) {
   return /[\\\/]/.test(path);
 }
 
-function ncjouleQuote(text) {
-  return "\"" + String(text).replace(/"/g, "") + "\"";
-}
-
 // The profile as given, or next to the post when the given path is relative and found there.
 function ncjouleResolveProfile(profile) {
   if (/^([A-Za-z]:)?[\\\/]/.test(profile) || ncjouleIsFile(profile) && ncjouleHasFolder(profile)) {
@@ -254,66 +256,194 @@ var ncjouleExitReasons = {
   4: "internal error"
 };
 
-// True when the file carries ncjoule's header (it was written). Never throws.
-function ncjouleIsAnnotated(file) {
+// ---------------------------------------------------------------------------------------------
+// The command line: execute() takes the arguments as one string, which the program's C runtime
+// splits on Windows (CommandLineToArgvW rules) and a shell-like parse splits on macOS and Linux.
+// Every argument is quoted for the one that applies, so that a name with spaces, quotes, $, `,
+// %, & or backslashes reaches ncjoule as one argument and runs nothing; what cannot be passed
+// safely is refused.
+// ---------------------------------------------------------------------------------------------
+
+function ncjouleOnWindows() {
+  try {
+    if (typeof getPlatform == "function") {
+      return /^win/i.test(String(getPlatform()));
+    }
+  } catch (e) {
+    // fall back to the look of the output path
+  }
+  var main = (typeof getOutputPath == "function") ? String(getOutputPath() || "") : "";
+  return /^([A-Za-z]:[\\\/]|\\\\)/.test(main);
+}
+
+function ncjouleRepeat(text, count) {
+  var out = "";
+  for (var i = 0; i < count; ++i) {
+    out += text;
+  }
+  return out;
+}
+
+// One argument for the MS C runtime: in double quotes, a quote as \", and backslashes doubled
+// only where they come before a quote (the closing one included), as the runtime halves them.
+function ncjouleQuoteWindows(text) {
+  var out = "\"";
+  var backslashes = 0;
+  for (var i = 0; i < text.length; ++i) {
+    var c = text.charAt(i);
+    if (c == "\\") {
+      ++backslashes;
+      continue;
+    }
+    if (c == "\"") {
+      out += ncjouleRepeat("\\", 2 * backslashes + 1) + "\"";
+    } else {
+      out += ncjouleRepeat("\\", backslashes) + c;
+    }
+    backslashes = 0;
+  }
+  return out + ncjouleRepeat("\\", 2 * backslashes) + "\"";
+}
+
+// One argument for a shell: in single quotes nothing is special; a quote ends them, is given
+// escaped, and they start again.
+function ncjouleQuotePosix(text) {
+  return "'" + text.replace(/'/g, "'\\''") + "'";
+}
+
+// Why an argument cannot be passed safely, or "". A control character (a newline above all)
+// would end the command line or the word under one parse or another; through cmd.exe (a .bat or
+// .cmd as the program) a quote ends the quoting and % and ! expand variables.
+function ncjouleUnsafe(argument, throughCmd) {
+  if (/[\x00-\x1f\x7f]/.test(argument)) {
+    return "a control character (a newline, a tab, ...)";
+  }
+  if (throughCmd && /["%!]/.test(argument)) {
+    return "\", % or !, which cmd.exe would act on";
+  }
+  return "";
+}
+
+// The argument string for execute(), or {refused: why}.
+function ncjouleCommandLine(program, words) {
+  var windows = ncjouleOnWindows();
+  var throughCmd = windows && /\.(bat|cmd)$/i.test(program);
+  var quoted = [];
+  for (var i = 0; i < words.length; ++i) {
+    var why = ncjouleUnsafe(words[i], throughCmd);
+    if (why) {
+      return {refused: "'" + words[i].replace(/[\x00-\x1f\x7f]/g, "?") + "' holds " + why};
+    }
+    quoted.push(windows ? ncjouleQuoteWindows(words[i]) : ncjouleQuotePosix(words[i]));
+  }
+  return {line: quoted.join(" ")};
+}
+
+// The extra arguments (property ncjouleArguments): split at blanks, never evaluated. "--" and
+// --follow-symlinks are left out: the file must be the one argument after the hook's own "--",
+// and the hook never replaces what a link points to.
+function ncjouleExtraArguments() {
+  var words = String(ncjouleProperty("ncjouleArguments") || "").split(/[ \t\r\n]+/);
+  var out = [];
+  for (var i = 0; i < words.length; ++i) {
+    if (!words[i]) {
+      continue;
+    }
+    if (words[i] == "--" || words[i] == "--follow-symlinks" || /^--follow-symlinks=/.test(words[i])) {
+      ncjouleWarning("'" + words[i] + "' in ncjouleArguments is not passed on");
+      continue;
+    }
+    out.push(words[i]);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// What ncjoule did. execute() gives back the exit status only, not ncjoule's status line; the
+// file itself tells whether it was rewritten: a fingerprint (lines and a hash of their text)
+// taken before and after. Never the look of its comments, which the post's own text may mimic.
+// ---------------------------------------------------------------------------------------------
+
+// "LINES:HASH" of a file, or "" when it cannot be read. Never throws.
+function ncjouleFingerprint(file) {
   try {
     if (typeof TextFile == "undefined") {
-      return false;
+      return "";
     }
     var f = new TextFile(file, false, "ansi");
-    var found = false;
-    for (var i = 0; i < 40 && !found; ++i) {
+    var hash = 0; // a polynomial hash of every character, exact in a double
+    var lines = 0;
+    for (;;) {
       var line;
       try {
         line = f.readln();
       } catch (e) {
+        break; // the end of the file
+      }
+      if (line === undefined || line === null) {
         break;
       }
-      found = /[(;]NCJ TOTAL /i.test(line);
+      line = String(line) + "\n";
+      for (var i = 0; i < line.length; ++i) {
+        hash = (hash * 31 + line.charCodeAt(i)) % 4294967291;
+      }
+      ++lines;
     }
     f.close();
-    return found;
+    return lines + ":" + hash;
   } catch (e) {
-    return false;
+    return "";
   }
 }
 
+var ncjouleExitReasons = {
+  1: "bad command line (check the extra arguments)",
+  2: "bad input: the program, the machine profile or the stock could not be read",
+  3: "nothing could be written (the file is a symbolic link, or was still being written or changed)",
+  4: "internal error"
+};
+
 // Annotates one file in place; true when it was annotated. Never throws.
 function ncjouleAnnotateFile(program, profile, file) {
-  var args = "annotate --machine " + ncjouleQuote(profile) + " --in-place";
+  var words = ["annotate", "--machine=" + profile, "--in-place"];
   var stock = String(ncjouleProperty("ncjouleStock") || "");
   if (stock) {
-    args += " --stock " + ncjouleQuote(stock);
-  }
-  var extra = String(ncjouleProperty("ncjouleArguments") || "");
-  if (extra) {
-    args += " " + extra;
+    words.push("--stock=" + stock);
   }
   // "--" before the file: a file named like an option stays a file.
-  args += " -- " + ncjouleQuote(file);
+  words = words.concat(ncjouleExtraArguments(), ["--", file]);
+  var command = ncjouleCommandLine(program, words);
+  if (command.refused) {
+    ncjouleWarning(file + " is not annotated: " + command.refused +
+      ", which cannot be passed to ncjoule safely here; the file is as the post wrote it");
+    return false;
+  }
+  var before = ncjouleFingerprint(file);
   var code;
   try {
     var folder = "";
     if (typeof FileSystem != "undefined" && typeof FileSystem.getFolderPath == "function") {
       folder = FileSystem.getFolderPath(file);
     }
-    code = execute(program, args, true, folder);
+    code = execute(program, command.line, true, folder);
   } catch (e) {
     ncjouleWarning("could not run '" + program + "' (" + e + "); " + file + " is as the post wrote it");
     return false;
   }
-  if (code === 2 && ncjouleIsAnnotated(file)) {
+  var after = ncjouleFingerprint(file);
+  var rewritten = before === "" || after === "" ? undefined : before != after;
+  if (code === 2 && rewritten) {
     // Errors the controller would refuse: annotated all the same, the header lists them.
     ncjouleWarning(file + " was annotated; it has errors its controller would refuse (see its NCJ WARN lines)");
     return true;
   }
   if (code !== 0 && code !== undefined && code !== null) {
-    ncjouleWarning("'" + program + " " + args + "' exited with " + code +
+    ncjouleWarning("'" + program + " " + command.line + "' exited with " + code +
       (ncjouleExitReasons[code] ? " (" + ncjouleExitReasons[code] + ")" : "") +
       "; " + file + " is as the post wrote it");
     return false;
   }
-  ncjouleLog("annotated " + file);
+  ncjouleLog(rewritten === false ? file + " unchanged: already annotated this way" : "annotated " + file);
   return true;
 }
 

@@ -1,7 +1,8 @@
 // The Fusion 360 / Inventor CAM / HSM hook (postprocessor-templates/fusion360/ncjoule-hook.cps.js)
 // run under node, appended to small vendor-style posts, with a stand-in for the post engine's
-// global functions the hook calls: execute() runs the real ncjoule, getOutputPath(),
-// getProperty(), warning(), log(), redirectToFile(), FileSystem.*.
+// global functions the hook calls (fusion_engine.js): execute() runs the real ncjoule through a
+// shell or the MS C runtime's parse, getOutputPath(), getProperty(), warning(), log(),
+// redirectToFile(), TextFile, FileSystem.*.
 //
 // Usage: NCJOULE=path/to/ncjoule NCJOULE_SOURCE_DIR=repo node fusion_hook_test.js
 "use strict";
@@ -11,6 +12,7 @@ const fs = require("fs");
 const os = require("os");
 const path = require("path");
 const vm = require("vm");
+const {makeEngine: makeEngineFor} = require("./fusion_engine");
 
 const ROOT = process.env.NCJOULE_SOURCE_DIR || path.resolve(__dirname, "..", "..");
 const NCJOULE = process.env.NCJOULE || "ncjoule";
@@ -21,52 +23,9 @@ const PROGRAM_A = path.join(ROOT, "samples", "programs", "anziani-table2-2.ngc")
 const PROGRAM_B = path.join(ROOT, "samples", "programs", "anziani-table2-9.ngc");
 const STOCK = fs.readFileSync(path.join(ROOT, "samples", "programs", "anziani-table2-2.stock"), "utf8").trim();
 
-// Splits execute()'s argument string the way a command line does (double quotes group).
-function splitArguments(text) {
-  const out = [];
-  const re = /"([^"]*)"|(\S+)/g;
-  let m;
-  while ((m = re.exec(text)) !== null) out.push(m[1] !== undefined ? m[1] : m[2]);
-  return out;
-}
-
-// A post engine: the globals a post (and the hook) sees, recording what happened.
-function makeEngine(outputPath, propertyOverrides) {
-  const record = {warnings: [], logs: [], executed: [], events: []};
-  const engine = {
-    record,
-    console,
-    extension: "ngc",
-    getOutputPath: () => outputPath,
-    getConfigurationFolder: () => path.dirname(outputPath),
-    getProperty(name) {
-      if (propertyOverrides && name in propertyOverrides) return propertyOverrides[name];
-      const p = engine.properties[name];
-      if (p === undefined) return undefined;
-      return p !== null && typeof p === "object" && "value" in p ? p.value : p;
-    },
-    warning: (m) => record.warnings.push(m),
-    log: (m) => record.logs.push(m),
-    execute(program, args, hide, folder) {
-      record.executed.push([program, args]);
-      const r = childProcess.spawnSync(program, splitArguments(args), {cwd: folder || undefined, encoding: "utf8"});
-      if (r.error) throw new Error("cannot run " + program + ": " + r.error.code);
-      return r.status;
-    },
-    // Output redirection: the stand-in copies a real posted program into the file.
-    redirectToFile(p) {
-      record.events.push("redirect " + p);
-      fs.copyFileSync(PROGRAM_B, p);
-    },
-    closeRedirection() {},
-    FileSystem: {
-      isFile: (p) => fs.existsSync(p) && fs.statSync(p).isFile(),
-      getFolderPath: (p) => path.dirname(p),
-      getFilename: (p) => path.basename(p),
-      getCombinedPath: (a, b) => path.join(a, b),
-    },
-  };
-  return engine;
+// The engine stand-in, its redirectToFile() copying a real posted program into the file.
+function makeEngine(outputPath, propertyOverrides, platform) {
+  return makeEngineFor(outputPath, propertyOverrides, platform, PROGRAM_B);
 }
 
 function tempDir() {
@@ -133,8 +92,8 @@ function withReader(source) {
   return "function require_read(p) { return readText(p); }\n" + source;
 }
 
-function modernPost(out, overrides) {
-  const engine = makeEngine(out, overrides);
+function modernPost(out, overrides, platform) {
+  const engine = makeEngine(out, overrides, platform);
   engine.readText = (p) => fs.readFileSync(p, "latin1");
   const context = vm.createContext(engine);
   vm.runInContext(withReader(MODERN_POST) + "\n" + HOOK, context, {filename: "modern.cps"});
@@ -158,8 +117,8 @@ test("a real posted program is annotated in place, after the post's own onTermin
   assert.strictEqual(ctx.vendorSawAnnotated, false, "the post's onTerminate ran after annotation");
   assert.deepStrictEqual(ctx.record.warnings, []);
   assert.strictEqual(ctx.record.executed.length, 1);
-  const args = ctx.record.executed[0][1];
-  assert.ok(args.includes("--in-place") && args.includes("--machine") && args.includes("--stock \"" + STOCK + "\""), args);
+  const argv = ctx.record.executed[0][2];
+  assert.deepStrictEqual(argv, ["annotate", "--machine=" + MACHINE, "--in-place", "--stock=" + STOCK, "--", out]);
 });
 
 test("the post's properties are kept and the hook's added beside them", () => {
@@ -261,7 +220,7 @@ test("a post writing two programs (main + subprogram via redirectToFile) gets bo
   assert.strictEqual(strip(out), mainOriginal);
   assert.strictEqual(strip(sub), fs.readFileSync(PROGRAM_B, "latin1"));
   // the setup sheet (.txt) is not a program and is not handed to ncjoule
-  const annotatedFiles = engine.record.executed.map((e) => splitArguments(e[1]).slice(-1)[0]);
+  const annotatedFiles = engine.record.executed.map((e) => e[2].slice(-1)[0]);
   assert.deepStrictEqual(annotatedFiles, [out, sub], "annotated: " + annotatedFiles.join(", "));
 });
 
@@ -273,7 +232,123 @@ test("a relative machine profile is found next to the post", () => {
   const ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: "mill.toml"});
   assert.deepStrictEqual(ctx.record.warnings, []);
   assert.ok(annotated(fs.readFileSync(out, "latin1")));
-  assert.ok(ctx.record.executed[0][1].includes(path.join(dir, "mill.toml")));
+  assert.ok(ctx.record.executed[0][2].includes("--machine=" + path.join(dir, "mill.toml")));
+});
+
+// File names a post writes that the command line must carry as they are (part"v2.nc was passed
+// as partv2.nc, and another file was rewritten).
+const ODD_NAMES = ['part"v2.nc', "two words.nc", "it's.nc", "$HOME.nc", "$(touch PWNED).nc", "`touch PWNED`.nc",
+                   "100%.nc", "%PATH%.nc", "a&b.nc", "a;b|c.nc", "back\\slash.nc", "trailing\\.nc", "Grüße 漢字.nc",
+                   "!bang.nc", "-x.nc", "*.nc"];
+
+for (const platform of ["LINUX", "WIN64"]) {
+  test(platform + ": names with quotes, blanks, $, %, &, backslashes and unicode are passed as they are", () => {
+    const dir = tempDir();
+    const bystander = path.join(dir, "partv2.nc"); // what the quote-dropping hook rewrote
+    fs.copyFileSync(PROGRAM_B, bystander);
+    const bystanderText = fs.readFileSync(bystander, "latin1");
+    for (const name of ODD_NAMES) {
+      const out = path.join(dir, name);
+      fs.copyFileSync(PROGRAM_A, out);
+      const original = fs.readFileSync(out, "latin1");
+      const ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE}, platform);
+      assert.deepStrictEqual(ctx.record.warnings, [], name);
+      assert.deepStrictEqual(ctx.record.executed[0][2].slice(-2), ["--", out], name);
+      assert.ok(annotated(fs.readFileSync(out, "latin1")), name + " not annotated");
+      assert.strictEqual(strip(out), original, name);
+    }
+    assert.strictEqual(fs.readFileSync(bystander, "latin1"), bystanderText, "another file was rewritten");
+    assert.ok(!fs.existsSync(path.join(dir, "PWNED")), "a name ran a command");
+  });
+}
+
+test("a name with a newline is refused: a warning, nothing run, the file untouched", () => {
+  for (const platform of ["LINUX", "WIN64"]) {
+    const dir = tempDir();
+    const out = path.join(dir, "new\nline.nc");
+    fs.copyFileSync(PROGRAM_A, out);
+    const original = fs.readFileSync(out, "latin1");
+    const ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE}, platform);
+    assert.strictEqual(ctx.record.executed.length, 0, platform);
+    assert.strictEqual(ctx.record.warnings.length, 1, platform);
+    assert.ok(/not annotated: .*control character/.test(ctx.record.warnings[0]), ctx.record.warnings[0]);
+    assert.strictEqual(fs.readFileSync(out, "latin1"), original);
+  }
+});
+
+test("Windows, ncjoule run through a .cmd: names with \", % or ! are refused, others pass", () => {
+  const dir = tempDir();
+  const wrapper = path.join(dir, "ncjoule.cmd"); // stands for cmd.exe: a script that runs ncjoule
+  fs.writeFileSync(wrapper, "#!/bin/sh\nexec " + JSON.stringify(NCJOULE) + ' "$@"\n', {mode: 0o755});
+  for (const name of ['part"v2.nc', "100%.nc", "!bang.nc"]) {
+    const out = path.join(dir, name);
+    fs.copyFileSync(PROGRAM_A, out);
+    const ctx = modernPost(out, {ncjoulePath: wrapper, ncjouleMachine: MACHINE}, "WIN64");
+    assert.strictEqual(ctx.record.executed.length, 0, name);
+    assert.ok(/cmd\.exe/.test(ctx.record.warnings[0]), ctx.record.warnings[0]);
+    assert.ok(!annotated(fs.readFileSync(out, "latin1")), name);
+  }
+  const out = path.join(dir, "a&b (1).nc");
+  fs.copyFileSync(PROGRAM_A, out);
+  const ctx = modernPost(out, {ncjoulePath: wrapper, ncjouleMachine: MACHINE}, "WIN64");
+  assert.deepStrictEqual(ctx.record.warnings, []);
+  assert.ok(annotated(fs.readFileSync(out, "latin1")));
+});
+
+test("ncjouleArguments is split at blanks and never evaluated", () => {
+  const dir = tempDir();
+  const out = path.join(dir, "1002.ngc");
+  fs.copyFileSync(PROGRAM_A, out);
+  const original = fs.readFileSync(out, "latin1");
+  for (const extra of ["--no-removal; touch PWNED", "--no-removal $(touch PWNED)", "`touch PWNED`", "&& touch PWNED"]) {
+    const ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE, ncjouleArguments: extra});
+    assert.ok(!fs.existsSync(path.join(dir, "PWNED")), extra + " ran a command");
+    // the stray words reach ncjoule as words, which it refuses: the file stays as it was
+    assert.deepStrictEqual(ctx.record.executed[0][2].slice(-2), ["--", out]);
+    assert.ok(/exited with 1/.test(ctx.record.warnings[0]), ctx.record.warnings[0]);
+    assert.strictEqual(fs.readFileSync(out, "latin1"), original);
+  }
+  const ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE, ncjouleArguments: " --no-removal\t--compact -- --follow-symlinks "});
+  assert.deepStrictEqual(ctx.record.executed[0][2].slice(3), ["--stock=" + STOCK, "--no-removal", "--compact", "--", out]);
+  assert.ok(annotated(fs.readFileSync(out, "latin1")));
+});
+
+test("what ncjoule did is read from its exit status and whether the file changed", () => {
+  const dir = tempDir();
+  const out = path.join(dir, "1002.ngc");
+  fs.copyFileSync(PROGRAM_A, out);
+  let ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE});
+  assert.ok(ctx.record.logs.some((m) => m === "ncjoule: annotated " + out), ctx.record.logs.join("\n"));
+  // again: ncjoule writes nothing (new CLI), and the log says so
+  const once = fs.readFileSync(out, "latin1");
+  ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE});
+  assert.strictEqual(fs.readFileSync(out, "latin1"), once);
+  assert.ok(ctx.record.logs.some((m) => /unchanged: already annotated this way/.test(m)), ctx.record.logs.join("\n"));
+  // a program with an error a controller refuses: exit 2, annotated all the same
+  const bad = path.join(dir, "bad.ngc");
+  fs.writeFileSync(bad, "(T1 D=6. CR=0. - ZMIN=-5. - FLAT END MILL)\nT1 M6\nG1 X10 F\nM30\n");
+  ctx = modernPost(bad, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE, ncjouleStock: ""});
+  assert.ok(/was annotated; it has errors/.test(ctx.record.warnings[0]), ctx.record.warnings.join("\n"));
+  // a comment that looks like ncjoule's header does not make a failure look like success
+  const fake = path.join(dir, "fake.ngc");
+  fs.writeFileSync(fake, "(NCJ TOTAL T=1s CK=ABC123)\n" + fs.readFileSync(PROGRAM_A, "latin1"));
+  const badProfile = path.join(dir, "bad.toml");
+  fs.writeFileSync(badProfile, "this is = not [ a profile\n");
+  ctx = modernPost(fake, {ncjoulePath: NCJOULE, ncjouleMachine: badProfile});
+  assert.ok(/exited with 2 \(bad input/.test(ctx.record.warnings[0]), ctx.record.warnings.join("\n"));
+});
+
+test("an output that is a symbolic link is not followed (new CLI: exit 3)", () => {
+  const dir = tempDir();
+  const target = path.join(dir, "elsewhere.ngc");
+  fs.copyFileSync(PROGRAM_A, target);
+  const original = fs.readFileSync(target, "latin1");
+  const out = path.join(dir, "1002.ngc");
+  fs.symlinkSync(target, out);
+  const ctx = modernPost(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE});
+  assert.strictEqual(fs.readFileSync(target, "latin1"), original);
+  assert.ok(fs.lstatSync(out).isSymbolicLink());
+  assert.ok(/exited with 3/.test(ctx.record.warnings[0]), ctx.record.warnings.join("\n"));
 });
 
 if (failures) {

@@ -3,8 +3,8 @@
 # per block. See README.md next to this file.
 #
 # The wrapped post does all the work; this script only runs
-#     ncjoule annotate FILE --machine PROFILE --in-place        (output to a file), or
-#     ncjoule annotate - --machine PROFILE                       (FreeCAD asks for a string: "-")
+#     ncjoule annotate --machine=PROFILE --in-place [...] -- FILE   (output to a file), or
+#     ncjoule annotate --machine=PROFILE [...] -- -                 (FreeCAD asks for a string: "-")
 # on its output, with a --tool N:TYPE:DIAMETER for each tool controller's tool (its shape and
 # sizes as FreeCAD holds them). When ncjoule is missing, not configured or fails, the post's output is returned
 # and written exactly as the wrapped post made it, with a warning in the report view saying why:
@@ -159,6 +159,22 @@ def _job_tools(objectslist):
     return args
 
 
+def _extra_arguments(text):
+    """--ncjoule-args / NCJOULE_ARGS as words (a shell's splitting, never a shell), less "--" and
+    --follow-symlinks: the file must be the one argument after the wrapper's own "--", and the
+    wrapper never replaces what a link points to."""
+    try:
+        words = shlex.split(text)
+    except ValueError as e:  # an unclosed quote
+        _warn("extra arguments %r left out: %s" % (text, e))
+        return []
+    kept = [w for w in words if w not in ("--", "--follow-symlinks")
+            and not w.startswith("--follow-symlinks=")]
+    if len(kept) != len(words):
+        _warn("'--' and --follow-symlinks in the extra arguments are not passed on")
+    return kept
+
+
 class _Settings:
     def __init__(self, known, objectslist):
         self.post = known.post or os.environ.get("NCJOULE_POST") or "linuxcnc"
@@ -166,7 +182,7 @@ class _Settings:
         self.program = known.ncjoule or os.environ.get("NCJOULE") or "ncjoule"
         self.stock = known.stock or os.environ.get("NCJOULE_STOCK") or _job_stock(objectslist)
         self.tools = _job_tools(objectslist)
-        self.extra = shlex.split(known.ncjoule_args or os.environ.get("NCJOULE_ARGS", ""))
+        self.extra = _extra_arguments(known.ncjoule_args or os.environ.get("NCJOULE_ARGS", ""))
         self.enabled = not known.no_ncjoule and os.environ.get("NCJOULE_DISABLE", "") not in (
             "1", "yes", "true", "on")
 
@@ -182,11 +198,15 @@ class _Settings:
             return "%s is not on the PATH (--ncjoule PATH)" % self.program
         return None
 
-    def command(self, source):
-        cmd = [self.program, "annotate", source, "--machine", self.machine]
+    def command(self, source, in_place=False):
+        """ncjoule annotate for `source` (a file, or "-" for standard input), every value one
+        argument, and the file after "--": a file named like an option ("-x.nc") stays a file."""
+        cmd = [self.program, "annotate", "--machine=" + self.machine]
         if self.stock:
-            cmd += ["--stock", self.stock]
-        return cmd + self.tools + self.extra
+            cmd.append("--stock=" + self.stock)
+        if in_place:
+            cmd.append("--in-place")
+        return cmd + self.tools + self.extra + ["--", source]
 
 
 def _run(cmd, text=None):
@@ -199,6 +219,22 @@ def _run(cmd, text=None):
         return None, "", str(e)
     return (r.returncode, r.stdout.decode("utf-8", "surrogateescape"),
             r.stderr.decode("utf-8", "replace").strip())
+
+
+def _in_place_outcome(status, err, filename):
+    """What `ncjoule annotate --in-place` did, from its exit status and its status line (its
+    last line on stderr, where it names the file escaped): "annotated FILE", "FILE unchanged:
+    ...", or None when it did not annotate the file. Never from the look of the file."""
+    last = err.splitlines()[-1] if err else ""
+    unchanged = " unchanged: already annotated this way"
+    if status == 0 and last.startswith("ncjoule: ") and last.endswith(unchanged):
+        return filename + unchanged
+    if status == 0 and last.startswith("ncjoule: annotated "):
+        return "annotated " + filename
+    if status == 2 and ((last.startswith("ncjoule: annotated ") and ", with errors" in last)
+                        or unchanged + ", with errors" in last):
+        return "annotated " + filename
+    return None
 
 
 def _why(status, err):
@@ -224,11 +260,15 @@ def export(objectslist, filename, argstring):
         if not os.path.isfile(filename):
             _warn("the %s post wrote no %s; nothing to annotate" % (settings.post, filename))
             return result
-        status, _, err = _run(settings.command(filename) + ["--in-place"])
-        if status != 0:
+        status, _, err = _run(settings.command(filename, in_place=True))
+        done = _in_place_outcome(status, err, filename)
+        if done is None:
             _warn("%s; %s is as the %s post wrote it" % (_why(status, err), filename, settings.post))
             return result
-        _log("annotated %s" % filename)
+        if status == 2:
+            _warn("%s was annotated; it has errors its controller would refuse: %s" % (
+                filename, err.splitlines()[0] if err else ""))
+        _log(done)
         if isinstance(result, str):
             with open(filename, encoding="utf-8", errors="surrogateescape", newline="") as f:
                 return f.read()

@@ -238,6 +238,33 @@ def main():
         probe = Tool(2.0, "Probe")
         check(ncjoule_post._tool_spec(6, probe) is None, "a probe is not passed as a tool")
 
+    def option_like_name():
+        # A file named like an option goes to ncjoule after "--" (it was refused as an option).
+        here = os.getcwd()
+        os.chdir(folder)
+        try:
+            ncjoule_post.export(objects, "-x.nc", args("linuxcnc"))
+        finally:
+            os.chdir(here)
+        with open(os.path.join(folder, "-x.nc"), newline="") as f:
+            text = f.read()
+        check(annotated(text), "-x.nc: not annotated")
+        check(strip(text, folder) == reference, "-x.nc: strip is not the post's output")
+
+    def extra_arguments():
+        # "--" and --follow-symlinks in the extra arguments are left out; the rest is passed.
+        out = os.path.join(folder, "extra.nc")
+        ncjoule_post.export(objects, out, args("linuxcnc", "'--ncjoule-args=-- --follow-symlinks --compact'"))
+        with open(out, newline="") as f:
+            text = f.read()
+        check(annotated(text) and strip(text, folder) == reference, "extra arguments: not annotated")
+        cmd = ncjoule_post._Settings(ncjoule_post.parser.parse_known_args(
+            ["--machine=-m.toml", "--stock=-s", "--ncjoule-args=-- --compact"])[0], []).command("-f.nc", True)
+        check(cmd[1:] == ["annotate", "--machine=-m.toml", "--stock=-s", "--in-place", "--compact", "--", "-f.nc"],
+              "command: %r" % cmd)
+
+    run_case("a file named like an option (-x.nc) is annotated", option_like_name)
+    run_case("extra arguments: split, '--' and --follow-symlinks left out", extra_arguments)
     run_case("the tool controller's tool shape and size reach ncjoule", controller_geometry)
     run_case("a missing ncjoule only warns", missing_ncjoule)
     run_case("a failing ncjoule only warns", failing_ncjoule)

@@ -1,5 +1,7 @@
 #include "in_place.hpp"
 
+#include "ncjoule/diagnostic.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -100,21 +102,22 @@ std::string writer_of(const FileStamp& file) {
   return found;
 }
 
-std::string in_place_refusal(const std::string& path, bool follow_symlinks, FileStamp& stamp) {
+std::string in_place_refusal(const std::string& file, bool follow_symlinks, FileStamp& stamp) {
+  const std::string path = printable(file);
   struct stat info {};
-  if (::lstat(path.c_str(), &info) != 0) return path + ": " + std::strerror(errno);
+  if (::lstat(file.c_str(), &info) != 0) return path + ": " + std::strerror(errno);
   if (S_ISLNK(info.st_mode)) {
     if (!follow_symlinks) {
       std::string target = "elsewhere";
-      if (char* real = ::realpath(path.c_str(), nullptr)) {
-        target = real;
+      if (char* real = ::realpath(file.c_str(), nullptr)) {
+        target = printable(real);
         std::free(real);
       }
       return path + " is a symbolic link (to " + target +
              "): --in-place replaces only the file given; add --follow-symlinks to replace the "
              "file it points to, or write elsewhere with -o";
     }
-    if (::stat(path.c_str(), &info) != 0) return path + ": " + std::strerror(errno);
+    if (::stat(file.c_str(), &info) != 0) return path + ": " + std::strerror(errno);
   }
   if (!S_ISREG(info.st_mode)) return path + " is not a regular file: --in-place cannot replace it";
   stamp = stamp_of(info);
@@ -123,11 +126,12 @@ std::string in_place_refusal(const std::string& path, bool follow_symlinks, File
   return {};
 }
 
-std::string in_place_changed(const std::string& path, const FileStamp& read, bool program_end) {
+std::string in_place_changed(const std::string& file, const FileStamp& read, bool program_end) {
+  const std::string path = printable(file);
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
     struct stat now {};
-    if (::stat(path.c_str(), &now) != 0)
+    if (::stat(file.c_str(), &now) != 0)
       return path + " changed while ncjoule read it: " + std::strerror(errno);
     if (!(stamp_of(now) == read))
       return path + " changed while ncjoule read it (another program is writing it?): run "

@@ -35,21 +35,30 @@ int main(int argc, char** argv) {
       ncjoule::logger().set_level(spdlog::level::info);
     }
   });
+  // Output that did not reach standard output (a full disk, a closed pipe) is a failed run, not
+  // a quiet one: whatever read it has only part of it. --help and --version too.
+  auto written = [](int code) -> int {
+    std::cout.flush();
+    if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+      std::cerr << "ncjoule: cannot write to standard output: the output is incomplete\n";
+      return kOutputError;
+    }
+    return code;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? kOk : kUsage;
+    const int code = app.exit(e);
+    return written(code == 0 ? kOk : kUsage);
+  } catch (const std::bad_alloc&) {
+    // The memory budget (--memory-limit) is checked before the large allocations: one that
+    // still fails is a fault of ncjoule's estimate of its needs.
+    std::cerr << "ncjoule: internal error: out of memory (give a smaller --memory-limit, or "
+                 "report the input that did this)\n";
+    return kInternalError;
   } catch (const std::exception& e) {
     std::cerr << "ncjoule: internal error: " << e.what() << '\n';
     return kInternalError;
   }
-  // Output that did not reach standard output (a full disk, a closed pipe) is a failed run, not
-  // a quiet one: whatever read it has only part of it.
-  std::cout.flush();
-  if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
-    std::cerr << "ncjoule: cannot write to standard output: the output is incomplete\n";
-    return kOutputError;
-  }
-  return exit_code;
+  return written(exit_code);
 }

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "command_registry.hpp"
+#include "ncjoule/diagnostic.hpp"
 
 namespace ncjoule::cli {
 
@@ -174,8 +175,9 @@ inline int write_program(const std::string& file, const std::string& output, boo
                          std::string_view text) {
   const std::string target = in_place ? file : (output.empty() ? "-" : output);
   if (const std::string error = write_output_file(target, text); !error.empty()) {
-    std::fprintf(stderr, "ncjoule: %s; %s\n", error.c_str(),
-                 in_place ? (file + " is untouched").c_str() : "nothing was written");
+    // The names in it are the user's: printed so that they cannot drive the terminal.
+    std::fprintf(stderr, "ncjoule: %s; %s\n", printable(error).c_str(),
+                 in_place ? (printable(file) + " is untouched").c_str() : "nothing was written");
     return kOutputError;
   }
   return 0;

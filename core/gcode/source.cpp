@@ -1,4 +1,7 @@
 // Splitting NC text into lines, and formatting diagnostics.
+#include <cstdint>
+#include <cstdio>
+
 #include "ncjoule/gcode.hpp"
 
 namespace ncjoule {
@@ -29,8 +32,97 @@ Diagnostic TextOrigin::at(std::size_t offset, std::string message, Severity seve
   return {severity, file, line, column_there, std::move(message)};
 }
 
+namespace {
+
+// A code point that could make a terminal or an editor show something else than the message:
+// C1 controls (U+0080 to U+009F), the bidirectional overrides and isolates that reorder text
+// (U+202A to U+202E, U+2066 to U+2069), the direction marks (U+200E, U+200F, U+061C), and the
+// line and paragraph separators.
+bool is_deceptive(std::uint32_t c) {
+  return (c >= 0x80 && c <= 0x9f) || (c >= 0x202a && c <= 0x202e) || (c >= 0x2066 && c <= 0x2069) ||
+         c == 0x200e || c == 0x200f || c == 0x061c || c == 0x2028 || c == 0x2029;
+}
+
+// Length of the UTF-8 sequence at text[i] and its code point; 0 when the bytes are not UTF-8.
+std::size_t utf8_at(std::string_view text, std::size_t i, std::uint32_t& code) {
+  const auto c = static_cast<unsigned char>(text[i]);
+  const std::size_t n = c >= 0xc2 && c < 0xe0   ? 2
+                        : c >= 0xe0 && c < 0xf0 ? 3
+                        : c >= 0xf0 && c < 0xf5 ? 4
+                                                : 0;
+  if (n == 0 || i + n > text.size()) return 0;
+  code = c & (0x7f >> n);
+  for (std::size_t k = 1; k < n; ++k) {
+    const auto b = static_cast<unsigned char>(text[i + k]);
+    if ((b & 0xc0) != 0x80) return 0;
+    code = (code << 6) | (b & 0x3f);
+  }
+  return n;
+}
+
+void append_escaped_byte(std::string& out, unsigned char c) {
+  static const char digits[] = "0123456789abcdef";
+  out += "\\x";
+  out += digits[c >> 4];
+  out += digits[c & 15];
+}
+
+// Appends `text` as it may be printed: control bytes, bytes that are not UTF-8 and deceptive
+// code points escaped (\x1b, \u{202e}), so that a program cannot drive the terminal or the
+// editor its diagnostics are read in; with `cut_long_runs`, a run without blanks longer than
+// kLongestRun (a 10 MB word) is cut, with the number of bytes left out.
+void append_printable(std::string& out, std::string_view text, bool cut_long_runs) {
+  constexpr std::size_t kLongestRun = 200, kKept = 160;
+  std::size_t run = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    run = c == ' ' ? 0 : run + 1;
+    if (cut_long_runs && run == kKept + 1) {
+      std::size_t end = i;
+      while (end < text.size() && text[end] != ' ')
+        ++end;
+      if (end - i > kLongestRun - kKept) {
+        out += "...(" + std::to_string(end - i) + " more bytes)";
+        i = end;
+        continue;
+      }
+    }
+    if (c < 0x20 || c == 0x7f) {
+      append_escaped_byte(out, c);
+      ++i;
+    } else if (c < 0x80) {
+      out += char(c);
+      ++i;
+    } else {
+      std::uint32_t code = 0;
+      const std::size_t n = utf8_at(text, i, code);
+      if (n == 0) {
+        append_escaped_byte(out, c);
+        ++i;
+      } else if (is_deceptive(code)) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, "\\u{%x}", unsigned(code));
+        out += buf;
+        i += n;
+      } else {
+        out.append(text.substr(i, n));
+        i += n;
+      }
+    }
+  }
+}
+
+} // namespace
+
+std::string printable(std::string_view text) {
+  std::string out;
+  append_printable(out, text, false);
+  return out;
+}
+
 std::string format_diagnostic(const Diagnostic& d) {
-  std::string out = d.file;
+  std::string out;
+  append_printable(out, d.file, false);
   if (d.line > 0) {
     out += ':' + std::to_string(d.line);
     if (d.column > 0) out += ':' + std::to_string(d.column);
@@ -46,19 +138,9 @@ std::string format_diagnostic(const Diagnostic& d) {
     out += ": error: ";
     break;
   }
-  // Messages quote the program; its control bytes (NUL, ESC, ...) are shown escaped, so that a
-  // program cannot drive the terminal the message is printed on.
-  for (const char ch : d.message) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c == 0x7f) {
-      static const char digits[] = "0123456789abcdef";
-      out += "\\x";
-      out += digits[c >> 4];
-      out += digits[c & 15];
-    } else {
-      out += ch;
-    }
-  }
+  // Messages quote the program: shown so that it cannot drive the terminal, and a word of
+  // megabytes is not printed whole (append_printable).
+  append_printable(out, d.message, true);
   return out;
 }
 

@@ -49,7 +49,7 @@ int run_annotate(const AnnotateCliOptions& o) {
   FileStamp stamp;
   if (o.in_place) {
     if (const std::string why = in_place_refusal(o.file, o.follow_symlinks, stamp); !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
       return kOutputError;
     }
   }
@@ -80,7 +80,7 @@ int run_annotate(const AnnotateCliOptions& o) {
   progress.finish();
   print_diagnostics(result.estimate.diagnostics, result.estimate.diagnostics_dropped);
   if (result.estimate.failed) {
-    std::cerr << "ncjoule: " << input->path
+    std::cerr << "ncjoule: " << printable(input->path)
               << " could not be estimated (see above); nothing was written\n";
     return kInputError;
   }
@@ -91,24 +91,24 @@ int run_annotate(const AnnotateCliOptions& o) {
       result.has_errors ? ", with errors a controller would refuse (see above)" : "";
   if (o.in_place) {
     if (result.text == input->text) {
-      std::cerr << "ncjoule: " << o.file << " unchanged: already annotated this way" << with_errors
-                << '\n';
+      std::cerr << "ncjoule: " << printable(o.file) << " unchanged: already annotated this way"
+                << with_errors << '\n';
       return done;
     }
     if (const std::string why = in_place_changed(o.file, stamp, result.estimate.program_end);
         !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
       return kOutputError;
     }
   }
   if (const int written = write_program(o.file, o.output, o.in_place, result.text); written != kOk)
     return written;
   if (o.in_place)
-    std::cerr << "ncjoule: annotated " << o.file << with_errors << '\n';
+    std::cerr << "ncjoule: annotated " << printable(o.file) << with_errors << '\n';
   else if (!o.output.empty() && o.output != "-")
-    std::cerr << "ncjoule: wrote " << o.output << with_errors << '\n';
+    std::cerr << "ncjoule: wrote " << printable(o.output) << with_errors << '\n';
   else if (result.has_errors)
-    std::cerr << "ncjoule: " << input->path
+    std::cerr << "ncjoule: " << printable(input->path)
               << " has errors a controller would refuse (see above); annotated anyway\n";
   return done;
 }

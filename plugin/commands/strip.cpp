@@ -30,7 +30,7 @@ int run_strip(const StripCliOptions& o) {
   FileStamp stamp;
   if (o.in_place) {
     if (const std::string why = in_place_refusal(o.file, o.follow_symlinks, stamp); !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
       return kOutputError;
     }
   }
@@ -43,7 +43,7 @@ int run_strip(const StripCliOptions& o) {
   // are looked for, not a quiet period.
   if (o.in_place) {
     if (const std::string why = in_place_changed(o.file, stamp, true); !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << o.file << " is untouched\n";
+      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
       return kOutputError;
     }
   }

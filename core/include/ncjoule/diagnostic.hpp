@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 
 namespace ncjoule {
 
@@ -20,6 +21,11 @@ struct Diagnostic {
 // "file:line:column: error: message"; "file: error: message" when the line is 0 (a whole file,
 // or a command-line option named as the file).
 std::string format_diagnostic(const Diagnostic& d);
+// Text from a user (a file name, a word of a program) as it may be printed: control bytes, bytes
+// that are not UTF-8, C1 controls and bidirectional overrides escaped (\x1b, \u{202e}).
+// format_diagnostic prints the file so, and the message too with any run of more than 200
+// characters without a blank (a 10 MB word) cut to 160 and the number of bytes left out.
+std::string printable(std::string_view text);
 
 // Where a piece of text handed to a reader came from, so that the reader's problems are reported
 // like a program's: a file with the line and column of the text's first character (a TOML

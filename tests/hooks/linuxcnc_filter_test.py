@@ -182,6 +182,37 @@ def main():
               "file %r: exit %d %r" % (name, r.returncode, r.stderr.decode()[:200]))
         os.remove(odd)
 
+    case("a failing ncjoule with PASSTHROUGH = 0: the program is still shown, exit 0")
+    bad_ini = os.path.join(ini_dir, "bad.ini")
+    with open(os.path.join(ini_dir, "bad.toml"), "w") as f:
+        f.write("not = [ a profile\n")
+    with open(bad_ini, "w") as f:
+        f.write("[NCJOULE]\nMACHINE = bad.toml\nPROGRAM = %s\nPASSTHROUGH = 0\n" % NCJOULE)
+    r = run_filter(q(FILTER), program_file, {"INI_FILE_NAME": bad_ini})
+    check(r.returncode == 0 and r.stdout == original, "PASSTHROUGH = 0: exit %d, shown %s" % (
+        r.returncode, r.stdout == original))
+    check("showing the program without annotations" in r.stderr.decode() and "exit 2" in r.stderr.decode(),
+          "PASSTHROUGH = 0: no reason: %r" % r.stderr.decode())
+
+    case("NCJOULE_ARGS is split into words, never run by a shell; an unclosed quote is a failure")
+    r = run_filter(base, program_file, {"NCJOULE_ARGS": "--no-removal; touch X $(touch X)"})
+    check(not os.path.exists("X") and not os.path.exists(os.path.join(folder, "X")),
+          "NCJOULE_ARGS ran a command")
+    check(r.returncode == 0 and r.stdout == original and "exit 1" in r.stderr.decode(),
+          "stray words: exit %d %r" % (r.returncode, r.stderr.decode()))
+    r = run_filter(base, program_file, {"NCJOULE_ARGS": "--dialect 'fanuc"})
+    check(r.returncode == 0 and r.stdout == original and "cannot be split" in r.stderr.decode(),
+          "unclosed quote: exit %d %r" % (r.returncode, r.stderr.decode()))
+    r = run_filter(base, program_file, {"NCJOULE_ARGS": "--dialect 'linuxcnc'"})
+    check(r.returncode == 0 and annotated(r.stdout), "quoted word: %r" % r.stderr.decode())
+
+    case("the filter's own arguments wrong: the usage, exit 1")
+    r = run_filter("%s --bogus" % q(FILTER), program_file)
+    check(r.returncode == 1 and "unknown option --bogus" in r.stderr.decode() and not r.stdout,
+          "unknown option: exit %d %r" % (r.returncode, r.stderr.decode()))
+    r = run_filter("%s --machine" % q(FILTER), program_file)
+    check(r.returncode == 1 and "needs a value" in r.stderr.decode(), "no value: %r" % r.stderr.decode())
+
     case("unreadable file: non-zero exit")
     r = run_filter(base, os.path.join(folder, "does-not-exist.ngc"))
     check(r.returncode != 0 and "cannot read" in r.stderr.decode(), "missing file: %r" % r.stderr.decode())

@@ -40,8 +40,24 @@ struct Comment {
   int column = 0;
 };
 
+// The matching ']' of every '[' of a text, found in one pass: the lexer then finds where each
+// value ends by a lookup, where a scan to the end of the line for each word made a line of
+// unclosed brackets ("x[x[x[...") quadratic in its length.
+class BracketMatches {
+public:
+  void assign(std::string_view text);
+  // Length from the '[' at `pos` to its matching ']', both included; 0 when it has none.
+  std::size_t length(std::size_t pos) const;
+
+private:
+  std::vector<std::size_t> opens_;  // positions of '[', in order
+  std::vector<std::size_t> closes_; // of the matching ']' of each, or npos
+  std::vector<std::size_t> open_;   // while assigning: indices of the '[' not closed yet
+};
+
 struct Block {
   std::string code;         // lower case, blanks and comments removed
+  BracketMatches brackets;  // of code
   std::vector<int> columns; // source column (1-based) of each byte of code
   std::vector<Word> words;
   std::vector<Assignment> assignments;
@@ -74,7 +90,8 @@ struct Block {
 void lex_line(std::string_view line, const Dialect& dialect, Block& block);
 
 // Length of the value expression starting at text[pos] (number, [expr], #param, function[..]).
-// Returns 0 when there is no valid value there.
-std::size_t value_length(std::string_view text, std::size_t pos);
+// Returns 0 when there is no valid value there. `brackets`, when given, are those of `text`.
+std::size_t value_length(std::string_view text, std::size_t pos,
+                         const BracketMatches* brackets = nullptr);
 
 } // namespace ncjoule::detail

@@ -1,11 +1,19 @@
 // A recursive-descent evaluator for G-code values. Precedence, lowest first, as in LinuxCNC:
 // AND OR XOR; EQ NE GT GE LT LE; + -; * / MOD; ** ; unary - +; primaries.
+//
+// It recurses once per level of brackets, and no deeper than kMaxExpressionNesting levels: a
+// program of a few KB of '[' must give an error, not overflow the stack of the thread that
+// runs it (a host program may run it on a small one). Chains of signs and parameter references
+// ("- - -1", "###1") are read in a loop, not by recursion. A value that is not finite (10**400,
+// EXP[1000]) is an error where it arises.
 #include "expression.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <cstring>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 namespace ncjoule::detail {
 namespace {
@@ -18,7 +26,7 @@ public:
   Evaluator(std::string_view text, ParameterReader& params) : t_(text), params_(params) {}
 
   bool run(double& value, std::string& error, std::size_t& offset) {
-    bool ok = primary(value) && pos_ == t_.size();
+    bool ok = primary(value) && pos_ == t_.size() && finite(value, 0);
     if (ok) return true;
     if (error_.empty()) error_ = "unexpected text in value";
     error = error_;
@@ -30,6 +38,7 @@ private:
   std::string_view t_;
   ParameterReader& params_;
   std::size_t pos_ = 0;
+  int depth_ = 0; // brackets open
   std::string error_;
   std::size_t error_pos_ = 0;
 
@@ -39,6 +48,13 @@ private:
       error_pos_ = pos_;
     }
     return false;
+  }
+  // A result that overflowed (or, from infinities, is no number): an error at `at`, the
+  // operator or function that made it.
+  bool finite(double v, std::size_t at) {
+    if (std::isfinite(v)) return true;
+    pos_ = at;
+    return fail("the value overflows: it is not a finite number");
   }
   bool at(std::string_view s) const { return t_.compare(pos_, s.size(), s) == 0; }
   bool take(std::string_view s) {
@@ -52,30 +68,35 @@ private:
     while (i < t_.size() && (std::isdigit(static_cast<unsigned char>(t_[i])) || t_[i] == '.'))
       ++i;
     if (i == pos_) return fail("expected a number");
-    if (!parse_plain_number(t_.substr(pos_, i - pos_), v)) return fail("malformed number");
+    if (!parse_plain_number(t_.substr(pos_, i - pos_), v)) {
+      // Digits and at most one point that still do not parse: too many digits for a double.
+      const std::string_view text = t_.substr(pos_, i - pos_);
+      const bool well_formed = text != "." && text.find('.') == text.rfind('.');
+      return fail(well_formed ? "number out of range: too large to be a value"
+                              : "malformed number");
+    }
     pos_ = i;
     return true;
   }
 
-  bool parameter(double& v) {
-    // at '#'
+  // A named parameter, at '#<'.
+  bool named_parameter(double& v) {
     ++pos_;
-    if (pos_ < t_.size() && t_[pos_] == '<') {
-      std::size_t close = t_.find('>', pos_);
-      if (close == std::string_view::npos) return fail("named parameter is not closed: '>'");
-      std::string_view name = t_.substr(pos_ + 1, close - pos_ - 1);
-      std::size_t start = pos_;
-      pos_ = close + 1;
-      std::string err;
-      if (!params_.read(name, v, err)) {
-        pos_ = start;
-        return fail(err);
-      }
-      return true;
-    }
+    std::size_t close = t_.find('>', pos_);
+    if (close == std::string_view::npos) return fail("named parameter is not closed: '>'");
+    std::string_view name = t_.substr(pos_ + 1, close - pos_ - 1);
     std::size_t start = pos_;
-    double index;
-    if (!primary(index)) return false;
+    pos_ = close + 1;
+    std::string err;
+    if (!params_.read(name, v, err)) {
+      pos_ = start;
+      return fail(err);
+    }
+    return true;
+  }
+
+  // The numbered parameter whose number is `index`, written at `start` (after its '#').
+  bool numbered_parameter(double index, std::size_t start, double& v) {
     const double r = std::round(index);
     if (std::abs(index - r) > 1e-4) {
       pos_ = start;
@@ -91,8 +112,14 @@ private:
 
   bool bracket(double& v) {
     // at '['
+    if (depth_ >= kMaxExpressionNesting)
+      return fail("expression nested more than " + std::to_string(kMaxExpressionNesting) +
+                  " brackets deep");
     ++pos_;
-    if (!logic(v)) return false;
+    ++depth_;
+    const bool ok = binary(v, 1);
+    --depth_;
+    if (!ok) return false;
     if (!take("]")) return fail("expected ']'");
     return true;
   }
@@ -128,154 +155,197 @@ private:
         v = std::atan2(a, b) / kDegree;
         return true;
       }
-      if (name == "abs")
-        v = std::abs(a);
-      else if (name == "acos") {
-        if (a < -1 || a > 1) return pos_ = start, fail("ACOS argument out of range [-1, 1]");
-        v = std::acos(a) / kDegree;
-      } else if (name == "asin") {
-        if (a < -1 || a > 1) return pos_ = start, fail("ASIN argument out of range [-1, 1]");
-        v = std::asin(a) / kDegree;
-      } else if (name == "cos")
-        v = std::cos(a * kDegree);
-      else if (name == "exp")
-        v = std::exp(a);
-      else if (name == "fix")
-        v = std::floor(a);
-      else if (name == "fup")
-        v = std::ceil(a);
-      else if (name == "ln") {
-        if (a <= 0) return pos_ = start, fail("LN of zero or a negative number");
-        v = std::log(a);
-      } else if (name == "round")
-        v = std::round(a); // halves away from zero, as LinuxCNC
-      else if (name == "sin")
-        v = std::sin(a * kDegree);
-      else if (name == "sqrt") {
-        if (a < 0) return pos_ = start, fail("SQRT of a negative number");
-        v = std::sqrt(a);
-      } else if (name == "tan")
-        v = std::tan(a * kDegree);
-      return true;
+      if (!function_value(name, a, start, v)) return false;
+      return finite(v, start);
     }
     return fail("unknown function or word in expression");
   }
 
+  // The value of a one-argument function (not ATAN, not EXISTS) written at `start`.
+  bool function_value(std::string_view name, double a, std::size_t start, double& v) {
+    if (name == "abs")
+      v = std::abs(a);
+    else if (name == "acos") {
+      if (a < -1 || a > 1) return pos_ = start, fail("ACOS argument out of range [-1, 1]");
+      v = std::acos(a) / kDegree;
+    } else if (name == "asin") {
+      if (a < -1 || a > 1) return pos_ = start, fail("ASIN argument out of range [-1, 1]");
+      v = std::asin(a) / kDegree;
+    } else if (name == "cos")
+      v = std::cos(a * kDegree);
+    else if (name == "exp")
+      v = std::exp(a);
+    else if (name == "fix")
+      v = std::floor(a);
+    else if (name == "fup")
+      v = std::ceil(a);
+    else if (name == "ln") {
+      if (a <= 0) return pos_ = start, fail("LN of zero or a negative number");
+      v = std::log(a);
+    } else if (name == "round")
+      v = std::round(a); // halves away from zero, as LinuxCNC
+    else if (name == "sin")
+      v = std::sin(a * kDegree);
+    else if (name == "sqrt") {
+      if (a < 0) return pos_ = start, fail("SQRT of a negative number");
+      v = std::sqrt(a);
+    } else if (name == "tan")
+      v = std::tan(a * kDegree);
+    return true;
+  }
+
+  // A value with the signs and parameter references before it, read in a loop: "--#-#1" is
+  // -(-#(-#1)). Only a chain of '#' needs a record (where each index starts, and the sign
+  // before it); signs alone fold into one.
   bool primary(double& v) {
+    bool negate = false;
+    std::vector<std::pair<std::size_t, bool>> references; // outermost first
+    for (;;) {
+      if (pos_ >= t_.size()) return fail("expected a value");
+      const char c = t_[pos_];
+      if (c == '-') {
+        negate = !negate;
+      } else if (c == '#' && (pos_ + 1 >= t_.size() || t_[pos_ + 1] != '<')) {
+        references.emplace_back(pos_ + 1, negate);
+        negate = false;
+      } else if (c != '+') {
+        break;
+      }
+      ++pos_;
+    }
+    if (!operand(v)) return false;
+    if (negate) v = -v;
+    for (auto r = references.rbegin(); r != references.rend(); ++r) {
+      if (!numbered_parameter(v, r->first, v)) return false;
+      if (r->second) v = -v;
+    }
+    return true;
+  }
+
+  // A value without signs or a numbered parameter's '#' before it.
+  bool operand(double& v) {
     if (pos_ >= t_.size()) return fail("expected a value");
     const char c = t_[pos_];
-    if (c == '-') return ++pos_, primary(v) && (v = -v, true);
-    if (c == '+') return ++pos_, primary(v);
     if (c == '[') return bracket(v);
-    if (c == '#') return parameter(v);
+    if (c == '#') return named_parameter(v);
     if ((c >= '0' && c <= '9') || c == '.') return number(v);
     if (c >= 'a' && c <= 'z') return function(v);
     return fail(std::string("unexpected character '") + c + "' in value");
   }
 
-  bool power(double& v) {
+  // Binary operators by precedence, lowest first; all associate to the left (2**3**2 is 64).
+  enum class Op {
+    None,
+    And,
+    Or,
+    Xor,
+    Eq,
+    Ne,
+    Gt,
+    Ge,
+    Lt,
+    Le,
+    Plus,
+    Minus,
+    Times,
+    Divide,
+    Mod,
+    Power
+  };
+  struct Operator {
+    Op op = Op::None;
+    int precedence = 0;
+    std::size_t length = 0;
+  };
+  Operator next_operator() const {
+    if (at("**")) return {Op::Power, 5, 2};
+    if (at("*")) return {Op::Times, 4, 1};
+    if (at("/")) return {Op::Divide, 4, 1};
+    if (at("mod")) return {Op::Mod, 4, 3};
+    if (at("+")) return {Op::Plus, 3, 1};
+    if (at("-")) return {Op::Minus, 3, 1};
+    static constexpr std::pair<const char*, Op> relational[] = {{"eq", Op::Eq}, {"ne", Op::Ne},
+                                                                {"gt", Op::Gt}, {"ge", Op::Ge},
+                                                                {"lt", Op::Lt}, {"le", Op::Le}};
+    for (const auto& [text, op] : relational)
+      if (at(text)) return {op, 2, 2};
+    if (at("and")) return {Op::And, 1, 3};
+    if (at("xor")) return {Op::Xor, 1, 3};
+    if (at("or")) return {Op::Or, 1, 2};
+    return {};
+  }
+
+  // Operands joined by operators of at least `lowest` precedence (precedence climbing). It
+  // recurses for an operand of higher precedence only: at most five levels within one pair of
+  // brackets, whatever the expression's length.
+  bool binary(double& v, int lowest) {
     if (!primary(v)) return false;
-    while (at("**")) {
-      pos_ += 2;
+    for (;;) {
+      const Operator o = next_operator();
+      if (o.op == Op::None || o.precedence < lowest) return true;
+      const std::size_t at_op = pos_;
+      pos_ += o.length;
       double r;
-      if (!primary(r)) return false;
+      if (!binary(r, o.precedence + 1)) return false;
+      if (!apply(o.op, v, r, at_op)) return false;
+    }
+  }
+
+  bool apply(Op op, double& v, double r, std::size_t at_op) {
+    switch (op) {
+    case Op::Power:
       if (v < 0 && std::floor(r) != r) return fail("negative number raised to a fractional power");
       v = std::pow(v, r);
+      break;
+    case Op::Times:
+      v *= r;
+      break;
+    case Op::Divide:
+      if (r == 0) return fail("division by zero");
+      v /= r;
+      break;
+    case Op::Mod:
+      if (r == 0) return fail("MOD by zero");
+      v = std::fmod(v, r);
+      if (v < 0) v += std::abs(r);
+      break;
+    case Op::Plus:
+      v += r;
+      break;
+    case Op::Minus:
+      v -= r;
+      break;
+    case Op::Eq:
+      v = std::abs(v - r) < kEqualTolerance;
+      break;
+    case Op::Ne:
+      v = std::abs(v - r) >= kEqualTolerance;
+      break;
+    case Op::Gt:
+      v = v > r;
+      break;
+    case Op::Ge:
+      v = v >= r;
+      break;
+    case Op::Lt:
+      v = v < r;
+      break;
+    case Op::Le:
+      v = v <= r;
+      break;
+    case Op::And:
+      v = v != 0 && r != 0;
+      break;
+    case Op::Or:
+      v = v != 0 || r != 0;
+      break;
+    case Op::Xor:
+      v = (v != 0) != (r != 0);
+      break;
+    case Op::None:
+      break;
     }
-    return true;
-  }
-
-  bool multiplicative(double& v) {
-    if (!power(v)) return false;
-    for (;;) {
-      if (at("*") && !at("**")) {
-        ++pos_;
-        double r;
-        if (!power(r)) return false;
-        v *= r;
-      } else if (at("/")) {
-        ++pos_;
-        double r;
-        if (!power(r)) return false;
-        if (r == 0) return fail("division by zero");
-        v /= r;
-      } else if (at("mod")) {
-        pos_ += 3;
-        double r;
-        if (!power(r)) return false;
-        if (r == 0) return fail("MOD by zero");
-        v = std::fmod(v, r);
-        if (v < 0) v += std::abs(r);
-      } else {
-        return true;
-      }
-    }
-  }
-
-  bool additive(double& v) {
-    if (!multiplicative(v)) return false;
-    for (;;) {
-      if (at("+")) {
-        ++pos_;
-        double r;
-        if (!multiplicative(r)) return false;
-        v += r;
-      } else if (at("-")) {
-        ++pos_;
-        double r;
-        if (!multiplicative(r)) return false;
-        v -= r;
-      } else {
-        return true;
-      }
-    }
-  }
-
-  bool comparison(double& v) {
-    if (!additive(v)) return false;
-    for (;;) {
-      static constexpr const char* ops[] = {"eq", "ne", "gt", "ge", "lt", "le"};
-      int op = -1;
-      for (int k = 0; k < 6; ++k)
-        if (at(ops[k])) op = k;
-      if (op < 0) return true;
-      pos_ += 2;
-      double r;
-      if (!additive(r)) return false;
-      switch (op) {
-      case 0:
-        v = std::abs(v - r) < kEqualTolerance;
-        break;
-      case 1:
-        v = std::abs(v - r) >= kEqualTolerance;
-        break;
-      case 2:
-        v = v > r;
-        break;
-      case 3:
-        v = v >= r;
-        break;
-      case 4:
-        v = v < r;
-        break;
-      case 5:
-        v = v <= r;
-        break;
-      }
-    }
-  }
-
-  bool logic(double& v) {
-    if (!comparison(v)) return false;
-    for (;;) {
-      int op = at("and") ? 0 : at("xor") ? 2 : at("or") ? 1 : -1;
-      if (op < 0) return true;
-      pos_ += op == 1 ? 2 : 3;
-      double r;
-      if (!comparison(r)) return false;
-      const bool a = v != 0, b = r != 0;
-      v = op == 0 ? (a && b) : op == 1 ? (a || b) : (a != b);
-    }
+    return finite(v, at_op);
   }
 };
 

@@ -7,6 +7,11 @@
 
 namespace ncjoule::detail {
 
+// Brackets an expression may nest (function brackets and #[...] included). LinuxCNC reads lines
+// of at most 256 bytes, which cannot nest more than 127; the evaluator recurses once per level,
+// so the limit also bounds the stack an expression takes, whatever its length.
+constexpr int kMaxExpressionNesting = 128;
+
 // Where an expression reads its parameters from.
 class ParameterReader {
 public:

@@ -1,4 +1,5 @@
 // Lexing one line of G-code into words, parameter assignments, comments and O-words.
+#include <algorithm>
 #include <cctype>
 #include <cstring>
 
@@ -25,14 +26,53 @@ char to_lower(char c) {
 constexpr const char* kFunctions[] = {"abs", "acos", "asin",  "atan", "cos",  "exp", "fix",
                                       "fup", "ln",   "round", "sin",  "sqrt", "tan", "exists"};
 
-std::size_t bracket_length(std::string_view t, std::size_t pos) {
+std::size_t bracket_length(std::string_view t, std::size_t pos, const BracketMatches* brackets) {
   // t[pos] == '['; returns the length up to and including the matching ']', or 0.
+  if (brackets) return brackets->length(pos);
   int depth = 0;
   for (std::size_t i = pos; i < t.size(); ++i) {
     if (t[i] == '[')
       ++depth;
     else if (t[i] == ']' && --depth == 0)
       return i - pos + 1;
+  }
+  return 0;
+}
+
+// Length of a value with no sign or '#' before it: a number, [expr] or function[..].
+std::size_t operand_length(std::string_view t, std::size_t pos, const BracketMatches* brackets) {
+  if (pos >= t.size()) return 0;
+  const char c = t[pos];
+  if (is_digit(c) || c == '.') {
+    std::size_t i = pos;
+    bool digits = false;
+    while (i < t.size() && is_digit(t[i]))
+      ++i, digits = true;
+    if (i < t.size() && t[i] == '.') {
+      ++i;
+      while (i < t.size() && is_digit(t[i]))
+        ++i, digits = true;
+    }
+    return digits ? i - pos : 0;
+  }
+  if (c == '[') return bracket_length(t, pos, brackets);
+  if (is_letter(c)) {
+    for (const char* f : kFunctions) {
+      const std::size_t len = std::strlen(f);
+      if (t.compare(pos, len, f) == 0 && pos + len < t.size() && t[pos + len] == '[') {
+        std::size_t n = bracket_length(t, pos + len, brackets);
+        if (!n) return 0;
+        std::size_t end = pos + len + n;
+        // ATAN[y]/[x]
+        if (len == 4 && t.compare(pos, 4, "atan") == 0 && end + 1 < t.size() && t[end] == '/' &&
+            t[end + 1] == '[') {
+          std::size_t m = bracket_length(t, end + 1, brackets);
+          if (!m) return 0;
+          end += 1 + m;
+        }
+        return end - pos;
+      }
+    }
   }
   return 0;
 }
@@ -68,53 +108,42 @@ void Block::clear() {
   errors.clear();
 }
 
-std::size_t value_length(std::string_view t, std::size_t pos) {
-  if (pos >= t.size()) return 0;
-  const char c = t[pos];
-  if (c == '+' || c == '-') {
-    std::size_t n = value_length(t, pos + 1);
-    return n ? n + 1 : 0;
-  }
-  if (is_digit(c) || c == '.') {
-    std::size_t i = pos;
-    bool digits = false;
-    while (i < t.size() && is_digit(t[i]))
-      ++i, digits = true;
-    if (i < t.size() && t[i] == '.') {
-      ++i;
-      while (i < t.size() && is_digit(t[i]))
-        ++i, digits = true;
+void BracketMatches::assign(std::string_view text) {
+  opens_.clear();
+  closes_.clear();
+  open_.clear();
+  for (std::size_t i = text.find('['); i < text.size(); ++i) {
+    if (text[i] == '[') {
+      open_.push_back(opens_.size());
+      opens_.push_back(i);
+      closes_.push_back(std::string_view::npos);
+    } else if (text[i] == ']' && !open_.empty()) {
+      closes_[open_.back()] = i;
+      open_.pop_back();
     }
-    return digits ? i - pos : 0;
   }
-  if (c == '[') return bracket_length(t, pos);
-  if (c == '#') {
-    if (pos + 1 < t.size() && t[pos + 1] == '<') {
-      std::size_t close = t.find('>', pos + 2);
+}
+
+std::size_t BracketMatches::length(std::size_t pos) const {
+  const auto it = std::lower_bound(opens_.begin(), opens_.end(), pos);
+  if (it == opens_.end() || *it != pos) return 0;
+  const std::size_t close = closes_[std::size_t(it - opens_.begin())];
+  return close == std::string_view::npos ? 0 : close - pos + 1;
+}
+
+std::size_t value_length(std::string_view t, std::size_t pos, const BracketMatches* brackets) {
+  // Signs and numbered parameters' '#' are prefixes ("--#-#1"), passed over in a loop: a chain
+  // of them, however long, takes no stack.
+  std::size_t i = pos;
+  for (; i < t.size(); ++i) {
+    if (t[i] == '#' && i + 1 < t.size() && t[i + 1] == '<') {
+      std::size_t close = t.find('>', i + 2);
       return close == std::string_view::npos ? 0 : close - pos + 1;
     }
-    std::size_t n = value_length(t, pos + 1);
-    return n ? n + 1 : 0;
+    if (t[i] != '+' && t[i] != '-' && t[i] != '#') break;
   }
-  if (is_letter(c)) {
-    for (const char* f : kFunctions) {
-      const std::size_t len = std::strlen(f);
-      if (t.compare(pos, len, f) == 0 && pos + len < t.size() && t[pos + len] == '[') {
-        std::size_t n = bracket_length(t, pos + len);
-        if (!n) return 0;
-        std::size_t end = pos + len + n;
-        // ATAN[y]/[x]
-        if (len == 4 && t.compare(pos, 4, "atan") == 0 && end + 1 < t.size() && t[end] == '/' &&
-            t[end + 1] == '[') {
-          std::size_t m = bracket_length(t, end + 1);
-          if (!m) return 0;
-          end += 1 + m;
-        }
-        return end - pos;
-      }
-    }
-  }
-  return 0;
+  const std::size_t n = operand_length(t, i, brackets);
+  return n ? i - pos + n : 0;
 }
 
 void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
@@ -177,6 +206,8 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     }
   }
   const std::string_view code = b.code;
+  b.brackets.assign(code);
+  const BracketMatches* brackets = &b.brackets;
   std::size_t p = 0;
   // N number first: skipped (it is a label, not a command).
   auto skip_n = [&] {
@@ -211,7 +242,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       b.o_label = std::string(code.substr(q, close - q + 1));
       q = close + 1;
     } else if (code[q] == '[') {
-      std::size_t len = bracket_length(code, q);
+      std::size_t len = bracket_length(code, q, brackets);
       if (!len) {
         add_error(b, b.columns[q], "O-word expression is not closed: expected ']'");
         return;
@@ -238,7 +269,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
   while (p < code.size()) {
     const char c = code[p];
     if (is_letter(c) && p + 1 < code.size() && is_letter(code[p + 1]) && adjacent(p) &&
-        value_length(code, p + 1) == 0) {
+        value_length(code, p + 1, brackets) == 0) {
       // A word of several letters: MCALL, TRANS, CYCLE81(...), RPL=45, GOTO ...
       std::size_t q = p + 1;
       while (q + 1 < code.size() && is_name_char(code[q + 1]) && adjacent(q))
@@ -252,7 +283,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
         k.args = code.substr(q + 1, len >= 2 && code[q + len - 1] == ')' ? len - 2 : len - 1);
         q += len;
       } else if (q < code.size() && code[q] == '=') {
-        std::size_t len = value_length(code, q + 1);
+        std::size_t len = value_length(code, q + 1, brackets);
         k.args = code.substr(q + 1, len);
         q += 1 + len;
       }
@@ -261,7 +292,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     } else if (is_letter(c) || c == '@' || c == '^') {
       std::size_t at = p + 1;
       if (at < code.size() && code[at] == '=' && is_letter(c)) ++at; // Sinumerik "X=10"
-      std::size_t len = value_length(code, at);
+      std::size_t len = value_length(code, at, brackets);
       if (len == 0) {
         add_warning(b, b.columns[p],
                     std::string("word '") + char(std::toupper(c)) +
@@ -273,7 +304,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       if (next < code.size() && code[next] == '=') {
         // "R1=5" (Sinumerik R parameters) and the like: an assignment this interpreter does
         // not keep.
-        std::size_t vlen = value_length(code, next + 1);
+        std::size_t vlen = value_length(code, next + 1, brackets);
         add_warning(b, b.columns[p],
                     "assignment '" + std::string(code.substr(p, next + 1 + vlen - p)) +
                         "' is not supported: ignored");
@@ -289,14 +320,14 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
         std::size_t close = code.find('>', t1);
         t1 = close == std::string_view::npos ? code.size() : close + 1;
       } else {
-        std::size_t len = value_length(code, t1);
+        std::size_t len = value_length(code, t1, brackets);
         t1 += len;
       }
       if (t1 >= code.size() || code[t1] != '=' || t1 == t0) {
         add_error(b, b.columns[p], "expected '#parameter=value'");
         return;
       }
-      std::size_t len = value_length(code, t1 + 1);
+      std::size_t len = value_length(code, t1 + 1, brackets);
       if (len == 0) {
         add_error(b, t1 + 1 < code.size() ? b.columns[t1 + 1] : b.columns[t1],
                   "expected a value after '='");

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "expression.hpp"
 #include "program_runner.hpp"
 
 using namespace ncjoule;
@@ -92,4 +93,47 @@ TEST_CASE("system parameters: #<_x> and friends in program units") {
   CHECK(x_of("[#<_y>*2]", "G20 G0 Y1.5\n") == doctest::Approx(3.0 * 25.4));
   CHECK(x_of("#<_metric>") == 1.0);
   CHECK(x_of("#5220") == 1.0); // G54 is the active system
+}
+
+TEST_CASE("a value that overflows is an error where it arises, never infinity or NaN") {
+  // An infinite dwell was dropped, an infinite coordinate made a move of no time.
+  for (const char* block :
+       {"G4 P[10**308*10]", "G0 X[10**400]", "G0 X[EXP[1000]]", "G0 X[0-10**308-10**308]",
+        "G0 X[1/[10**-320]]", "#1=[10**308*10]", "G0 X[10**308*10 GT 0]"}) {
+    CAPTURE(block);
+    const Toolpath p = run(std::string("G21\n") + block + "\nM2\n");
+    const auto e = with_severity(p, Severity::Error);
+    REQUIRE(e.size() == 1);
+    CHECK(e[0].line == 2);
+    CHECK(e[0].column > 0);
+    CHECK(e[0].message.find("not a finite number") != std::string::npos);
+    CHECK(moves(p).empty());
+  }
+  // A number too long for a double, written out.
+  const Toolpath p = run("G21\nG0 X" + std::string(400, '9') + "\nM2\n");
+  REQUIRE(errors(p) == 1);
+  CHECK(p.result.diagnostics[0].message.find("out of range") != std::string::npos);
+}
+
+TEST_CASE("signs and parameter references chain in any order") {
+  CHECK(x_of("[--1]") == 1.0);
+  CHECK(x_of("[-+-+-2]") == -2.0);
+  CHECK(x_of("-#1", "#1=5\n") == -5.0);
+  CHECK(x_of("#-#1", "#1=-2\n#2=7\n") == 7.0);
+  CHECK(x_of("[-#-#1]", "#1=-2\n#2=7\n") == -7.0);
+  CHECK(x_of("[2**-1]") == 0.5);
+  CHECK(x_of("[-2**2]") == 4.0);
+  CHECK(x_of("[1 - -1 * 3]") == 4.0);
+}
+
+TEST_CASE("brackets nest up to the limit, and a level more is an error with its column") {
+  const int n = detail::kMaxExpressionNesting;
+  const std::string deepest = std::string(n, '[') + "1" + std::string(n, ']');
+  CHECK(x_of(deepest) == 1.0);
+  const Toolpath p = run("G21\nG0 X[" + deepest + "]\nM2\n");
+  const auto e = with_severity(p, Severity::Error);
+  REQUIRE(e.size() == 1);
+  CHECK(e[0].line == 2);
+  CHECK(e[0].column == 4);
+  CHECK(e[0].message.find("nested more than 128 brackets deep") != std::string::npos);
 }

@@ -119,7 +119,7 @@ if [ -n "${NCJOULE_ARGS:-}" ]; then
   set +f
   for w in ${words[@]+"${words[@]}"}; do add_extra "$w"; done
 fi
-for w in ${arg_options[@]+"${arg_options[@]}"}; do add_extra "$w"; done # after: they win
+for w in ${arg_options[@]+"${arg_options[@]}"}; do add_extra "$w"; done # after NCJOULE_ARGS
 set -f
 IFS=$' \t\n' read -r -d '' -a exts <<<"$ext_list"
 set +f

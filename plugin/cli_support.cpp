@@ -18,9 +18,11 @@ std::optional<SourceFile> read_source(const std::string& path, std::size_t max_b
                                       std::size_t memory_budget) {
   const std::string name = path == "-" ? "<stdin>" : path;
   std::vector<Diagnostic> problems;
-  std::optional<std::string> text = path == "-"
-                                        ? read_text_stream(stdin, name, problems, max_bytes)
-                                        : read_text_file(path, "an NC file", problems, max_bytes);
+  // The limit of a program is an option of the command; that of a tool table is not.
+  const std::string_view option = max_bytes == kMaxSettingsFileBytes ? "" : "--input-limit";
+  std::optional<std::string> text =
+      path == "-" ? read_text_stream(stdin, name, "an NC file", problems, max_bytes, option)
+                  : read_text_file(path, "an NC file", problems, max_bytes, option);
   if (text && memory_budget > 0) {
     // Lines as make_source() splits them: LF, CRLF or a lone CR ends one.
     std::size_t lines = 1;

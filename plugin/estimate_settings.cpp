@@ -172,7 +172,7 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
     if (!options.dialect) return exit_code = kUsage, std::nullopt;
   }
   if (!s.tool_table.empty()) {
-    const auto table = read_source(s.tool_table);
+    const auto table = read_source(s.tool_table, kMaxSettingsFileBytes);
     if (!table) return exit_code = kInputError, std::nullopt;
     std::vector<Diagnostic> diagnostics;
     options.tool_table = parse_tool_table(*table, s.tool_units == "inch", diagnostics);

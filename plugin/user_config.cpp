@@ -116,7 +116,11 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
 const std::optional<UserConfig>& user_config() {
   static const std::optional<UserConfig> config = []() -> std::optional<UserConfig> {
     const std::string path = user_config_path();
-    if (path.empty() || !is_file(path)) return UserConfig{};
+    // The usual places may hold nothing; a file NCJOULE_CONFIG names is read whatever it is (a
+    // device too, within the settings files' size limit), so that a wrong one is said.
+    const bool named = std::getenv("NCJOULE_CONFIG") != nullptr;
+    std::error_code ec;
+    if (path.empty() || (named ? !fs::exists(path, ec) : !is_file(path))) return UserConfig{};
     std::vector<Diagnostic> diagnostics;
     const std::optional<std::string> text =
         read_text_file(path, "a user config (TOML)", diagnostics);

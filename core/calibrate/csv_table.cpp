@@ -127,7 +127,9 @@ std::optional<NumericCsv> parse_numeric_csv(std::string path, std::string_view t
 
 std::optional<NumericCsv> read_numeric_csv(const std::string& path,
                                            std::vector<Diagnostic>& diagnostics) {
-  const std::optional<std::string> text = read_text_file(path, "a CSV file", diagnostics);
+  // A power log of a day at 10 Hz is tens of megabytes.
+  const std::optional<std::string> text =
+      read_text_file(path, "a CSV file", diagnostics, std::size_t(256) << 20);
   if (!text) return std::nullopt;
   return parse_numeric_csv(path, *text, diagnostics);
 }

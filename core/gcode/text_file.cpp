@@ -31,16 +31,18 @@ bool read_all(std::FILE* f, std::size_t max_bytes, std::string& text, bool& too_
   }
 }
 
-std::string too_large_message(std::size_t max_bytes) {
-  return "is larger than " + mib(max_bytes) +
-         ", the limit for such a file (an NC program's limit is set with --input-limit)";
+std::string too_large_message(std::size_t max_bytes, std::string_view what,
+                              std::string_view limit_option) {
+  std::string out = "is larger than " + mib(max_bytes) + ", the limit for " + std::string(what);
+  if (!limit_option.empty()) out += " (" + std::string(limit_option) + " sets it)";
+  return out;
 }
 
 } // namespace
 
 std::optional<std::string> read_text_file(const std::string& path, std::string_view what,
                                           std::vector<Diagnostic>& diagnostics,
-                                          std::size_t max_bytes) {
+                                          std::size_t max_bytes, std::string_view limit_option) {
   auto fail = [&](std::string message) -> std::optional<std::string> {
     diagnostics.push_back({Severity::Error, path, 0, 0, std::move(message)});
     return std::nullopt;
@@ -50,7 +52,7 @@ std::optional<std::string> read_text_file(const std::string& path, std::string_v
     if (S_ISDIR(info.st_mode)) return fail("is a directory, not " + std::string(what));
     // A regular file's size is known before a byte is read.
     if (S_ISREG(info.st_mode) && std::size_t(info.st_size) > max_bytes)
-      return fail(too_large_message(max_bytes));
+      return fail(too_large_message(max_bytes, what, limit_option));
   }
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) return fail("cannot be opened: " + std::string(std::strerror(errno)));
@@ -58,19 +60,21 @@ std::optional<std::string> read_text_file(const std::string& path, std::string_v
   bool too_large = false;
   const bool read = read_all(f, max_bytes, text, too_large);
   std::fclose(f);
-  if (too_large) return fail(too_large_message(max_bytes));
+  if (too_large) return fail(too_large_message(max_bytes, what, limit_option));
   if (!read) return fail("could not be read to the end");
   return text;
 }
 
 std::optional<std::string> read_text_stream(std::FILE* stream, const std::string& name,
+                                            std::string_view what,
                                             std::vector<Diagnostic>& diagnostics,
-                                            std::size_t max_bytes) {
+                                            std::size_t max_bytes, std::string_view limit_option) {
   std::string text;
   bool too_large = false;
   const bool read = read_all(stream, max_bytes, text, too_large);
   if (too_large) {
-    diagnostics.push_back({Severity::Error, name, 0, 0, too_large_message(max_bytes)});
+    diagnostics.push_back(
+        {Severity::Error, name, 0, 0, too_large_message(max_bytes, what, limit_option)});
     return std::nullopt;
   }
   if (!read) {

@@ -112,7 +112,10 @@ std::optional<TriangleMesh> parse_stl(std::string_view bytes, const std::string&
 
 std::optional<TriangleMesh> read_stl(const std::string& path,
                                      std::vector<Diagnostic>& diagnostics) {
-  const std::optional<std::string> bytes = read_text_file(path, "an STL file", diagnostics);
+  // A part's STL can be tens of megabytes; a quarter of a gigabyte is 5 million triangles.
+  constexpr std::size_t kMaxStlBytes = std::size_t(256) << 20;
+  const std::optional<std::string> bytes =
+      read_text_file(path, "an STL file", diagnostics, kMaxStlBytes);
   if (!bytes) return std::nullopt;
   return parse_stl(*bytes, path, diagnostics);
 }

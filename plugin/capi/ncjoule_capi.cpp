@@ -82,7 +82,8 @@ std::optional<std::string> annotated_text(ncjoule_context* context, const std::s
 
 std::optional<std::string> read_file(const char* path) {
   std::vector<ncjoule::Diagnostic> problems;
-  auto text = ncjoule::read_text_file(path, "a file", problems);
+  auto text =
+      ncjoule::read_text_file(path, "an NC file", problems, ncjoule::kDefaultMaxProgramBytes);
   if (!text) fail(ncjoule::format_diagnostic(problems.front()));
   return text;
 }

@@ -28,7 +28,7 @@ int run_canon(const CanonOptions& o) {
   }
   options.block_delete = o.block_delete;
   if (!o.tool_table.empty()) {
-    auto table = read_source(o.tool_table);
+    auto table = read_source(o.tool_table, kMaxSettingsFileBytes);
     if (!table) return kInputError;
     std::vector<Diagnostic> diagnostics;
     options.tools = parse_tool_table(*table, o.tool_units == "inch", diagnostics);

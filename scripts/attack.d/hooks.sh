@@ -15,7 +15,7 @@ hook_check() {
   fi
 }
 # strips_to FILE ORIGINAL: FILE is ORIGINAL annotated (changed, and strip gives it back).
-strips_to() { ! cmp -s "$1" "$2" && "$N" strip -- "$1" 2> /dev/null | cmp -s - "$2"; }
+strips_to() { ! cmp -s -- "$1" "$2" && "$N" strip -- "$1" 2> /dev/null | cmp -s - "$2"; }
 # holds TEXT FILE: FILE holds exactly TEXT.
 holds() { printf '%s' "$1" | cmp -s - "$2"; }
 tiny=$'G0 X0\nM2\n'

@@ -22,15 +22,19 @@ inline constexpr std::size_t kMaxSettingsFileBytes = std::size_t(16) << 20;
 
 // The bytes of the file at `path`; std::nullopt with an error on the file when it cannot be
 // opened or read to the end, is a directory (then named against `what` it was meant to be, with
-// its article: "a job file", "an STL file"), or holds more than `max_bytes`.
+// its article: "a job file", "an STL file"), or holds more than `max_bytes` (the error names
+// `limit_option`, the option that sets the limit, where there is one).
 std::optional<std::string> read_text_file(const std::string& path, std::string_view what,
                                           std::vector<Diagnostic>& diagnostics,
-                                          std::size_t max_bytes = kMaxSettingsFileBytes);
+                                          std::size_t max_bytes = kMaxSettingsFileBytes,
+                                          std::string_view limit_option = {});
 
-// Reads a stream (standard input) the same way, up to `max_bytes`; `name` names it in the error.
+// Reads a stream (standard input) the same way; `name` names it in the error.
 std::optional<std::string> read_text_stream(std::FILE* stream, const std::string& name,
+                                            std::string_view what,
                                             std::vector<Diagnostic>& diagnostics,
-                                            std::size_t max_bytes);
+                                            std::size_t max_bytes,
+                                            std::string_view limit_option = {});
 
 // What a file's bytes are when they are not text ncjoule can read (ASCII, UTF-8 or a one-byte
 // code page): "UTF-16 (little-endian) text", "UTF-32 (big-endian) text", "binary data"; empty

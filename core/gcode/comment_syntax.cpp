@@ -31,10 +31,16 @@ bool opens_argument_list(std::string_view line, std::size_t paren) {
 std::size_t paren_length(std::string_view line, std::size_t pos) {
   int depth = 0;
   for (std::size_t i = pos; i < line.size(); ++i) {
-    if (line[i] == '(')
+    if (line[i] == '"') {
+      // A string argument: MSG("a (b)") closes at its last ')'.
+      const std::size_t close = line.find('"', i + 1);
+      if (close == std::string_view::npos) return 0;
+      i = close;
+    } else if (line[i] == '(') {
       ++depth;
-    else if (line[i] == ')' && --depth == 0)
+    } else if (line[i] == ')' && --depth == 0) {
       return i - pos + 1;
+    }
   }
   return 0;
 }
@@ -54,24 +60,37 @@ std::size_t comment_close(std::string_view line, std::size_t open, const Dialect
 } // namespace ncjoule::detail
 
 namespace ncjoule {
+namespace {
 
-LineComments line_comments(std::string_view line, const Dialect& dialect) {
-  LineComments out;
+// The one reading of a line's comments and code: `comment(begin, end, open)` for each comment
+// (its text is line[begin, end), `open` where its opening character is), `code(begin, end)` for
+// each run of code, `stop(at)` where an end-of-block mark ends the scan.
+template <class Comment, class Code, class Stop>
+void scan_line(std::string_view line, const Dialect& dialect, Comment comment, Code code,
+               Stop stop) {
   std::size_t i = 0;
   while (i < line.size()) {
     const char c = line[i];
     if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '%') {
       ++i;
     } else if (c == '(' && dialect.paren_argument_lists && detail::opens_argument_list(line, i)) {
-      out.has_code = true;
       const std::size_t len = detail::paren_length(line, i);
+      const std::size_t begin = i;
       i = len ? i + len : line.size();
+      code(begin, i);
+    } else if (c == '"' && dialect.paren_argument_lists) {
+      // A Sinumerik string ("a;b(c)"): code, whatever it holds.
+      const std::size_t close = line.find('"', i + 1);
+      const std::size_t begin = i;
+      i = close == std::string_view::npos ? line.size() : close + 1;
+      code(begin, i);
     } else if (c == '*' && dialect.star_block_end) {
-      break;
+      stop(i);
+      return;
     } else if (c == '(' && dialect.paren_comments) {
       const std::size_t close = detail::comment_close(line, i, dialect);
       const std::size_t end = close == std::string_view::npos ? line.size() : close;
-      out.comments.push_back({trim(line.substr(i + 1, end - i - 1)), int(i) + 1});
+      comment(i + 1, end, i);
       i = end + 1;
     } else if (c == ')' && dialect.paren_comments) {
       // A stray ')' (Estlcam's "(HSS Twist Drill, 3mm (R))" where comments do not nest): the
@@ -80,15 +99,51 @@ LineComments line_comments(std::string_view line, const Dialect& dialect) {
     } else if (c == ';') {
       // A comment to the end of the line, or the Fanuc family's end of block.
       if (dialect.semicolon_comments)
-        out.comments.push_back({trim(line.substr(i + 1)), int(i) + 1});
-      break;
+        comment(i + 1, line.size(), i);
+      else
+        stop(i);
+      return;
     } else {
-      out.has_code = true;
+      code(i, i + 1);
       ++i;
     }
   }
+}
+
+} // namespace
+
+LineComments line_comments(std::string_view line, const Dialect& dialect) {
+  LineComments out;
+  scan_line(
+      line, dialect,
+      [&](std::size_t begin, std::size_t end, std::size_t open) {
+        out.comments.push_back({trim(line.substr(begin, end - begin)), int(open) + 1});
+      },
+      [&](std::size_t, std::size_t) { out.has_code = true; }, [](std::size_t) {});
   return out;
 }
+
+namespace detail {
+
+CodeSpan code_span(std::string_view line, const Dialect& dialect) {
+  CodeSpan span;
+  scan_line(
+      line, dialect,
+      [&](std::size_t, std::size_t, std::size_t open) {
+        if (span.stop == std::string_view::npos) span.stop = open;
+        if (line[open] == ';') span.semicolon = open;
+      },
+      [&](std::size_t begin, std::size_t end) {
+        if (span.code_begin == std::string_view::npos) span.code_begin = begin;
+        span.code_end = end;
+      },
+      [&](std::size_t at) {
+        if (span.stop == std::string_view::npos) span.stop = at;
+      });
+  return span;
+}
+
+} // namespace detail
 
 bool is_move(CanonKind kind) {
   return kind == CanonKind::Traverse || kind == CanonKind::Feed || kind == CanonKind::Arc ||

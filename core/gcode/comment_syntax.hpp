@@ -14,7 +14,20 @@ namespace ncjoule::detail {
 bool opens_argument_list(std::string_view line, std::size_t paren);
 
 // Length of the ( ... ) list at line[pos], including both parentheses, or 0 when not closed.
+// Parentheses inside a double-quoted string (Sinumerik's MSG("a (b)")) do not count.
 std::size_t paren_length(std::string_view line, std::size_t pos);
+
+// Where a line's code is as the dialect reads it: what an annotation written into the line must
+// stay after (code_end) and before (stop: its first comment, or the end-of-block mark of the
+// Fanuc family's ';' and Heidenhain's '*'). Read by the scanner line_comments() uses, so that
+// nothing is put inside a call, an expression or a string.
+struct CodeSpan {
+  std::size_t code_begin = std::string_view::npos; // the first code byte; npos: no code
+  std::size_t code_end = 0;                        // one past the last code byte
+  std::size_t stop = std::string_view::npos;       // first comment or block end; npos: none
+  std::size_t semicolon = std::string_view::npos;  // the ';' of a comment to the line's end
+};
+CodeSpan code_span(std::string_view line, const Dialect& dialect);
 
 // The ')' that closes the comment opened at line[open] (the first one, or the balancing one
 // where the dialect nests comments); npos when the line ends first.

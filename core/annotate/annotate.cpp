@@ -1,6 +1,7 @@
 // annotate(): the program's lines, byte for byte, with one comment per block that moves or takes
-// time, per-operation subtotals on tool-change lines, and the header after the % and O-number
-// lines.
+// time (after its code, or on a line of its own before it when the line has no room), per-
+// operation subtotals on tool-change lines, and the header, its first line the file's key, after
+// the program's leading lines.
 #include <algorithm>
 #include <map>
 #include <optional>
@@ -35,7 +36,7 @@ struct CleanLines {
   std::vector<std::string> storage;   // texts that changed
   std::vector<std::string_view> text; // every line's text
   std::vector<std::string_view> eol;  // every line's line ending
-  std::vector<bool> old_header;       // a header line of an earlier run: left out
+  std::vector<bool> removed;          // a whole-line annotation of an earlier run: left out
 };
 
 CleanLines clean_lines(const SourceFile& source) {
@@ -43,21 +44,21 @@ CleanLines clean_lines(const SourceFile& source) {
   const std::size_t n = source.lines.size();
   c.text.resize(n);
   c.eol.resize(n);
-  c.old_header.resize(n);
+  c.removed.resize(n);
+  const Annotations old(source.text, source.lines);
   std::vector<std::pair<std::size_t, std::string>> changed;
   std::string scratch;
   for (std::size_t i = 0; i < n; ++i) {
     const LineSpan& span = source.lines[i];
     c.eol[i] = std::string_view(source.text).substr(span.begin + span.length, span.eol_length);
-    const std::string_view line = source.line_text(i);
-    c.text[i] = line;
-    if (is_header_line(line)) {
-      c.old_header[i] = true;
+    c.text[i] = source.line_text(i);
+    if (old.whole_line(i)) {
+      c.removed[i] = true;
       c.text[i] = {};
       continue;
     }
     scratch.clear();
-    if (strip_inline(line, scratch)) changed.emplace_back(i, scratch);
+    if (old.strip_inline(i, scratch)) changed.emplace_back(i, scratch);
   }
   c.storage.reserve(changed.size()); // no reallocation: the views below point into it
   for (auto& [i, text] : changed) {
@@ -67,23 +68,48 @@ CleanLines clean_lines(const SourceFile& source) {
   return c;
 }
 
+// The key of the program the lines hold: that of strip(source), so that annotating an
+// annotated file gives it again.
+std::string program_key(const CleanLines& lines) {
+  FileKey key;
+  for (std::size_t i = 0; i < lines.text.size(); ++i) {
+    if (lines.removed[i]) continue;
+    key.add(lines.text[i]);
+    key.add(lines.eol[i]);
+  }
+  return key.value();
+}
+
 // The index of the first line the header goes before, or nullopt when there is no line to put
-// it before (an empty file, or one holding only a % and an O-number line).
+// it before. The header comes after the lines a control or a DNC list reads first: a leading
+// '%' (and Sinumerik's %_N_NAME_MPF), Sinumerik's ;$PATH line, the O-number line, and the
+// program's title comment (the first comment-only line after those, when the O-number line
+// carries none): controls show that comment as the program's name, so it stays first.
 std::optional<std::size_t> header_position(const CleanLines& lines) {
   const std::size_t n = lines.text.size();
   std::size_t i = 0;
-  auto skip_old_headers = [&] {
-    while (i < n && lines.old_header[i])
+  auto skip_removed = [&] {
+    while (i < n && lines.removed[i])
       ++i;
   };
-  skip_old_headers();
-  if (i < n && is_percent_line(lines.text[i])) {
+  skip_removed();
+  bool leading = false; // a '%', %_N_ or O-number line was passed
+  bool named = false;   // the last of them carries its comment (O1234 (NAME))
+  while (i < n) {
+    const std::string_view line = lines.text[i];
+    if (is_percent_line(line) || is_program_number_line(line)) {
+      leading = true;
+      named = is_program_number_line(line) && has_trailing_comment(line);
+    } else if (!(leading && is_sinumerik_path_line(line))) {
+      break;
+    }
     ++i;
-    skip_old_headers();
+    skip_removed();
   }
-  if (i < n && is_program_number_line(lines.text[i])) {
+  if (leading && !named && i < n && is_comment_only(lines.text[i]) &&
+      !is_sinumerik_path_line(lines.text[i])) {
     ++i;
-    skip_old_headers();
+    skip_removed();
   }
   if (i >= n) return std::nullopt;
   return i;
@@ -91,11 +117,11 @@ std::optional<std::size_t> header_position(const CleanLines& lines) {
 
 // The line ending header lines get: the file's own (that of the line before them, else of the
 // first line that has one).
-std::string_view header_eol(const CleanLines& lines, std::size_t position) {
+std::string_view file_eol(const CleanLines& lines, std::size_t position) {
   for (std::size_t i = position; i-- > 0;)
-    if (!lines.old_header[i] && !lines.eol[i].empty()) return lines.eol[i];
+    if (!lines.removed[i] && !lines.eol[i].empty()) return lines.eol[i];
   for (std::size_t i = 0; i < lines.eol.size(); ++i)
-    if (!lines.old_header[i] && !lines.eol[i].empty()) return lines.eol[i];
+    if (!lines.removed[i] && !lines.eol[i].empty()) return lines.eol[i];
   return "\n";
 }
 
@@ -128,9 +154,10 @@ std::vector<Field> block_fields(const LineSummary* summary, double end_s,
   return fields;
 }
 
-// The block's comment, with as many fields as fit on the line; empty when not even the time
-// fits.
-std::string block_comment(std::vector<Field> fields, std::size_t room, const WriteStyle& style) {
+// The block's comment, with as many fields as fit in `room` (the space before it included);
+// empty when not even the time fits.
+std::string block_comment(std::vector<Field> fields, std::size_t room, MarkKind kind,
+                          const CommentStyle& style, std::string_view seed) {
   while (true) {
     std::string content = "NCJ";
     content.reserve(room);
@@ -138,7 +165,7 @@ std::string block_comment(std::vector<Field> fields, std::size_t room, const Wri
       content += ' ';
       content += f.text;
     }
-    std::string comment = marked_comment(content, MarkKind::Inline, style.comment);
+    std::string comment = marked_comment(content, kind, style, seed);
     if (comment.size() + 1 <= room) return comment;
     auto last = std::max_element(fields.begin(), fields.end(), [](const Field& a, const Field& b) {
       return a.drop_rank < b.drop_rank;
@@ -147,6 +174,20 @@ std::string block_comment(std::vector<Field> fields, std::size_t room, const Wri
     fields.erase(last);
   }
 }
+
+// A block's comment goes on a line of its own, right before the block, when not even its time
+// fits after the code (a long line, grbl's short one). Not in Heidenhain's ISO format, where a
+// block carries its number and its '*'.
+bool takes_comment_lines(const Dialect& dialect) {
+  return !dialect.star_block_end;
+}
+
+// What a block gets: its comment, and where: after its code at `at`, or on a line of its own.
+struct BlockNote {
+  std::string comment; // empty: none
+  std::size_t at = 0;
+  bool own_line = false;
+};
 
 } // namespace
 } // namespace annotation
@@ -162,35 +203,92 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
                                                              : kDefaultMaxLineLength;
 
   const CleanLines lines = clean_lines(source);
+  // The estimate numbers the lines of the program without old annotations: line k of it is
+  // source line source_of[k].
+  std::vector<std::size_t> source_of;
+  source_of.reserve(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!lines.removed[i]) source_of.push_back(i);
+  auto in_source = [&](int line) -> std::optional<std::size_t> {
+    if (line < 0 || static_cast<std::size_t>(line) >= source_of.size()) return std::nullopt;
+    return source_of[static_cast<std::size_t>(line)];
+  };
   std::vector<const LineSummary*> summary(n, nullptr);
   for (const LineSummary& s : estimate.lines)
-    if (s.line >= 0 && static_cast<std::size_t>(s.line) < n) summary[s.line] = &s;
+    if (const auto i = in_source(s.line)) summary[*i] = &s;
   // The operations, by the line their fields go on (the tool change that starts them, else
   // their first block).
-  std::map<int, const OperationSummary*> operations;
+  std::map<std::size_t, const OperationSummary*> operations;
   if (options.operations)
     for (const OperationSummary& op : estimate.operations)
-      if (op.line >= 0 && static_cast<std::size_t>(op.line) < n) operations.emplace(op.line, &op);
+      if (const auto i = in_source(op.line)) operations.emplace(*i, &op);
 
+  // With a header, every checksum is sealed with the file's key, which its first line holds;
+  // without one (or when not even the key line fits), each block's with its own line.
   std::optional<std::size_t> header_at;
-  if (options.header) header_at = header_position(lines);
   WriteStyle header_style = style;
   header_style.max_line_length = std::min(style.max_line_length, kHeaderWidth);
-  // Where each source line lands in the output: old header lines leave, the new header comes in
-  // at header_at: the summary's lines, then one line for each warning.
+  std::string key_line;
+  if (options.header) header_at = header_position(lines);
+  if (header_at) {
+    const std::string key = program_key(lines);
+    style.seed = header_style.seed = key_seed(key);
+    key_line = marked_comment(key_content(key), MarkKind::Key, style.comment, "");
+    if (key_line.size() > header_style.max_line_length) {
+      header_at.reset();
+      style.seed = header_style.seed = {};
+    }
+  }
+
+  // Each block's comment, after its code or, when not even its time fits there, on a line of
+  // its own before it.
+  std::vector<BlockNote> notes(n);
+  const bool comment_lines = takes_comment_lines(estimate.dialect);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (lines.removed[i]) continue;
+    const std::string_view text = lines.text[i];
+    const LineSummary* s = summary[i];
+    const auto op = operations.find(i);
+    const bool op_start = op != operations.end();
+    const bool timed = s && (s->has_move || s->time_s > 0);
+    if (!timed && !op_start) continue;
+    const std::vector<Field> fields =
+        block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr, options.fields);
+    const std::string seed = style.seed.empty() ? line_seed(text) : style.seed;
+    BlockNote& note = notes[i];
+    const std::optional<std::size_t> at = insertion_point(text, estimate.dialect, style.comment);
+    if (at && text.size() < style.max_line_length) {
+      note.comment = block_comment(fields, style.max_line_length - text.size(), MarkKind::Inline,
+                                   style.comment, seed);
+      note.at = *at;
+    }
+    if (note.comment.empty() && comment_lines) {
+      note.comment =
+          block_comment(fields, style.max_line_length + 1, MarkKind::Line, style.comment, seed);
+      note.own_line = !note.comment.empty();
+    }
+  }
+
+  // Where each source line lands in the output: old annotation lines leave, the new header
+  // comes in at header_at (the key, the summary's lines, then one line for each warning), and a
+  // block's own comment line comes before it.
   std::vector<std::string> header;
   if (header_at) {
-    header = summary_lines(estimate, machine, header_style);
+    header.push_back(key_line);
+    for (std::string& h : summary_lines(estimate, machine, header_style))
+      header.push_back(std::move(h));
     const std::vector<WarningText> warnings = header_warnings(estimate);
     std::vector<int> output_line(n + 1, 0);
     int next = 1;
     for (std::size_t i = 0; i < n; ++i) {
       if (i == *header_at) next += static_cast<int>(header.size() + warnings.size());
+      if (notes[i].own_line) ++next;
       output_line[i] = next;
-      if (!lines.old_header[i]) ++next;
+      if (!lines.removed[i]) ++next;
     }
     for (std::string& w : warning_lines(warnings, header_style, [&](int line) {
-           return line >= 1 && static_cast<std::size_t>(line) <= n ? output_line[line - 1] : line;
+           const auto i = in_source(line - 1);
+           return i ? output_line[*i] : line;
          }))
       header.push_back(std::move(w));
   }
@@ -199,32 +297,26 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   out.reserve(source.text.size() + source.text.size() / 2 + 1024);
   for (std::size_t i = 0; i < n; ++i) {
     if (header_at && *header_at == i) {
-      const std::string_view eol = header_eol(lines, i);
+      const std::string_view eol = file_eol(lines, i);
       for (const std::string& h : header) {
         out += h;
         out += eol;
       }
     }
-    if (lines.old_header[i]) continue;
+    if (lines.removed[i]) continue;
     const std::string_view text = lines.text[i];
-    const LineSummary* s = summary[i];
-    const auto op = operations.find(static_cast<int>(i));
-    const bool op_start = op != operations.end();
-    const bool timed = s && (s->has_move || s->time_s > 0);
-    const std::optional<std::size_t> at =
-        timed || op_start ? insertion_point(text, style.comment) : std::nullopt;
-    std::string comment;
-    if (at && text.size() < style.max_line_length)
-      comment = block_comment(
-          block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr, options.fields),
-          style.max_line_length - text.size(), style);
-    if (comment.empty()) {
+    const BlockNote& note = notes[i];
+    if (note.comment.empty()) {
+      out += text;
+    } else if (note.own_line) {
+      out += note.comment;
+      out += lines.eol[i].empty() ? file_eol(lines, i) : lines.eol[i];
       out += text;
     } else {
-      out += text.substr(0, *at);
+      out += text.substr(0, note.at);
       out += ' ';
-      out += comment;
-      out += text.substr(*at);
+      out += note.comment;
+      out += text.substr(note.at);
     }
     out += lines.eol[i];
   }
@@ -236,12 +328,21 @@ AnnotatedProgram annotate_program(std::string path, std::string_view text,
                                   const AnnotateOptions& annotate_options) {
   AnnotatedProgram out;
   // The program as it was before any earlier annotation: what is estimated and written back.
-  const SourceFile program = make_source(std::move(path), strip(text));
+  std::string stripped = strip(text);
+  const bool had_annotations = stripped.size() != text.size(); // strip only takes bytes out
+  const SourceFile program = make_source(path, std::move(stripped));
   out.estimate = estimate_program(program, machine, options);
   if (out.estimate.failed) return out;
   for (const Diagnostic& d : out.estimate.diagnostics)
     if (d.severity == Severity::Error) out.has_errors = true;
-  out.text = annotate(program, out.estimate, machine, annotate_options);
+  // The old annotations are taken out of the text as it came, in the one pass strip() made:
+  // what remains is exactly the program estimated, even where taking them out would let a
+  // second pass find more.
+  if (had_annotations)
+    out.text = annotate(make_source(std::move(path), std::string(text)), out.estimate, machine,
+                        annotate_options);
+  else
+    out.text = annotate(program, out.estimate, machine, annotate_options);
   return out;
 }
 

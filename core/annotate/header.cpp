@@ -159,7 +159,7 @@ Group legend() {
   for (std::string_view sentence :
        {"T=block time, E=energy, P=mean power, MRR=mean removal rate mm3 per s,",
         "CUM=time at block end, OP OPT OPE=operation from this tool change, its time, energy.",
-        "ncjoule strip removes every NCJ comment"}) {
+        "ncjoule strip removes the NCJ comments of this file"}) {
     // Split on spaces so that the legend wraps like any other group.
     std::size_t begin = 0;
     while (begin < sentence.size()) {
@@ -239,7 +239,7 @@ void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>&
   content = start;
   auto flush = [&] {
     if (content.size() > start.size())
-      lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
+      lines.push_back(marked_comment(content, MarkKind::Header, style.comment, style.seed));
     content = start;
   };
   for (const std::string& f : group.fields) {
@@ -282,7 +282,7 @@ std::vector<std::string> warning_lines(const std::vector<WarningText>& warnings,
       content.pop_back();
     while (!content.empty() && content.back() == ' ')
       content.pop_back();
-    lines.push_back(marked_comment(content, MarkKind::Header, style.comment));
+    lines.push_back(marked_comment(content, MarkKind::Header, style.comment, style.seed));
   }
   return lines;
 }

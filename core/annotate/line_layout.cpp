@@ -1,5 +1,7 @@
 #include "line_layout.hpp"
 
+#include "comment_syntax.hpp"
+
 namespace ncjoule::annotation {
 namespace {
 
@@ -25,15 +27,26 @@ std::string_view trim_blanks(std::string_view text) {
 
 } // namespace
 
-std::optional<std::size_t> insertion_point(std::string_view line, const CommentStyle& style) {
-  const std::size_t first = style.open == ";" ? line.find(';') : line.find_first_of("(;");
-  std::size_t end = first == std::string_view::npos ? line.size() : first;
-  while (end > 0 && is_blank_char(line[end - 1]))
+std::optional<std::size_t> insertion_point(std::string_view line, const Dialect& dialect,
+                                           const CommentStyle& style) {
+  const detail::CodeSpan span = detail::code_span(line, dialect);
+  if (span.code_begin == std::string_view::npos) return std::nullopt;
+  std::size_t end;
+  std::size_t floor;
+  if (style.open == ";") {
+    // Everything after a ';' is comment: past all the code, before the user's ';' comment.
+    end = span.semicolon == std::string_view::npos ? line.size() : span.semicolon;
+    floor = span.code_end;
+  } else {
+    end = span.stop == std::string_view::npos ? line.size() : span.stop;
+    floor = 0;
+  }
+  while (end > floor && is_blank_char(line[end - 1]))
     --end;
   // Block delete and blanks alone are no code.
   std::size_t code = skip_blanks(line, 0);
   if (code < end && line[code] == '/') code = skip_blanks(line, code + 1);
-  if (code >= end) return std::nullopt;
+  if (code >= end || span.code_begin >= end) return std::nullopt;
   return end;
 }
 
@@ -79,6 +92,25 @@ bool is_program_number_line(std::string_view line) {
   if (i == digits) return false;
   const std::string_view rest = line.substr(i);
   return is_blank(rest) || is_comment_only(rest);
+}
+
+} // namespace ncjoule::annotation
+
+namespace ncjoule::annotation {
+
+bool is_sinumerik_path_line(std::string_view line) {
+  constexpr std::string_view kPath = ";$PATH=";
+  const std::size_t i = skip_blanks(line, 0);
+  if (line.size() - i < kPath.size()) return false;
+  for (std::size_t k = 0; k < kPath.size(); ++k) {
+    const char c = line[i + k];
+    if ((c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c) != kPath[k]) return false;
+  }
+  return true;
+}
+
+bool has_trailing_comment(std::string_view line) {
+  return line.find_first_of("(;") != std::string_view::npos;
 }
 
 } // namespace ncjoule::annotation

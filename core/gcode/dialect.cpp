@@ -27,6 +27,8 @@ std::vector<Dialect> make_dialects() {
   fanuc.fanuc_subprograms = true;
   fanuc.g65_macro_calls = true;
   fanuc.upper_case_comments = true;
+  // No figure holds for the whole family (each control's manual states its own): 128, kept
+  // short (docs/annotation.md lists every dialect's limit and where it comes from).
   fanuc.max_line_length = 128;
   fanuc.canned_cycle_group = true;
   fanuc.last_code_of_group_wins = true;
@@ -42,7 +44,11 @@ std::vector<Dialect> make_dialects() {
   Dialect grbl;
   grbl.name = "grbl";
   grbl.dollar_lines = true;
-  grbl.max_line_length = 256; // grbl's line buffer; longer lines overflow it
+  // Senders stream to grbl by counting characters into its 128-byte serial receive buffer
+  // (serial.h RX_BUFFER_SIZE); grbl's own stream.py sends a line only while the bytes in flight
+  // stay under 127, so a line longer than 125 bytes (126 with its newline, 127 with CR LF) is
+  // never sent.
+  grbl.max_line_length = 125;
   all.push_back(grbl);
 
   Dialect mach3;
@@ -58,7 +64,10 @@ std::vector<Dialect> make_dialects() {
   siemens.paren_comments = true;
   siemens.dwell_x_word = true;
   siemens.fanuc_subprograms = true;
-  siemens.comment_open = "(";
+  // Sinumerik's comments are ';' to the end of the line; "( )" is a call's argument list
+  // (CYCLE81(...), COS (0), MSG("...")), never a comment to write.
+  siemens.comment_open = ";";
+  siemens.comment_close = "";
   siemens.upper_case_comments = true;
   siemens.paren_argument_lists = true; // CYCLE81(...), MSG("...")
   siemens.sinumerik_words = true;
@@ -84,6 +93,13 @@ std::vector<Dialect> make_dialects() {
   reprap.name = "reprap";
   reprap.dwell_p_in_ms = true;
   reprap.dwell_s_word = true;
+  // Marlin reads "( )" as code unless built with PAREN_COMMENTS (off by default): its words
+  // would be parameters (E= an extrusion). ';' comments are dropped as they are read.
+  reprap.comment_open = ";";
+  reprap.comment_close = "";
+  // Marlin keeps a line's code in a 96-byte buffer (MAX_CMD_SIZE, with its terminating zero)
+  // and skips what comes past it: lines of 95 bytes stay whole whatever reads them.
+  reprap.max_line_length = 95;
   all.push_back(reprap);
   return all;
 }

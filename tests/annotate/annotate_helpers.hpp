@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "line_alignment.hpp"
 #include "ncjoule/annotate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
@@ -26,12 +27,14 @@ inline ncjoule::Estimate estimate(const ncjoule::SourceFile& source,
   return ncjoule::estimate_program(source, machine(), options);
 }
 
-// annotate() of `text` as the command line does it: estimated as it is.
+// annotate() of `text`, its old annotations in it, with the estimate of the program without
+// them.
 inline std::string annotated(const std::string& text,
                              std::optional<ncjoule::Dialect> dialect = std::nullopt,
                              const ncjoule::AnnotateOptions& options = {}) {
   const ncjoule::SourceFile source = ncjoule::make_source("test.ngc", text);
-  return ncjoule::annotate(source, estimate(source, dialect), machine(), options);
+  const ncjoule::SourceFile program = ncjoule::make_source("test.ngc", ncjoule::strip(text));
+  return ncjoule::annotate(source, estimate(program, dialect), machine(), options);
 }
 
 // The lines of a text without their line endings.
@@ -48,6 +51,24 @@ inline std::size_t count(const std::string& text, const std::string& what) {
   for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
     ++n;
   return n;
+}
+
+// The canonical commands a program runs in a dialect, as `ncjoule canon` prints them, comments
+// left out (an annotation is one), each with the index of the line it came from in `original`:
+// an annotated program must run exactly as the original.
+inline std::vector<std::string> canon_of(const std::string& text, const ncjoule::Dialect& dialect,
+                                         const std::string& original) {
+  const std::vector<int> from = original_lines(lines_of(text), lines_of(original));
+  const ncjoule::SourceFile source = ncjoule::make_source("canon.ngc", text);
+  ncjoule::InterpreterOptions options;
+  options.dialect = dialect;
+  std::vector<std::string> out;
+  ncjoule::interpret(source, options, [&](const ncjoule::CanonCommand& c) {
+    if (c.kind == ncjoule::CanonKind::Comment) return;
+    const int line = c.line >= 0 && std::size_t(c.line) < from.size() ? from[c.line] : -3;
+    out.push_back(ncjoule::format_canon(c) + " @" + std::to_string(line));
+  });
+  return out;
 }
 
 inline std::string dialect_name_or_default(const std::optional<ncjoule::Dialect>& d) {

@@ -72,26 +72,51 @@ TEST_CASE("with ';' comments the annotation goes at the end of the code, after (
 
 TEST_CASE("the header goes after a leading % line and an O-number line, never before") {
   const Dialect fanuc = *find_dialect("fanuc");
+  // The key first, then the totals.
   const auto with_both = lines_of(annotated("%\nO1234 (PART)\nG21 G90\nG00 X1.\nM30\n%\n", fanuc));
   CHECK(with_both[0] == "%");
   CHECK(with_both[1] == "O1234 (PART)");
-  CHECK(with_both[2].rfind("(NCJ TOTAL T=", 0) == 0);
+  CHECK(with_both[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(with_both[3].rfind("(NCJ TOTAL T=", 0) == 0);
 
   const auto o_only = lines_of(annotated("O0002\nG21 G90\nG00 X1.\nM30\n", fanuc));
   CHECK(o_only[0] == "O0002");
-  CHECK(o_only[1].rfind("(NCJ TOTAL", 0) == 0);
+  CHECK(o_only[1].rfind("(NCJ FILE KEY=", 0) == 0);
 
   const auto percent_only = lines_of(annotated("%\nG21 G90\nG0 X1\nM2\n%\n"));
   CHECK(percent_only[0] == "%");
-  CHECK(percent_only[1].rfind("(NCJ TOTAL", 0) == 0);
+  CHECK(percent_only[1].rfind("(NCJ FILE KEY=", 0) == 0);
 
   const auto neither = lines_of(annotated("G21 G90\nG0 X1\nM2\n"));
-  CHECK(neither[0].rfind("(NCJ TOTAL", 0) == 0);
+  CHECK(neither[0].rfind("(NCJ FILE KEY=", 0) == 0);
 
   // LinuxCNC's "o100 sub" is a control word, not a program number.
   CHECK_FALSE(annotation::is_program_number_line("o100 sub"));
   CHECK(annotation::is_program_number_line("O0100 (NAME)"));
   CHECK(annotation::is_program_number_line(":1234"));
+}
+
+TEST_CASE("the program's title comment after % and the O-number stays first; the header follows") {
+  const Dialect fanuc = *find_dialect("fanuc");
+  // A title on a line of its own: controls and DNC lists show the first comment as the name.
+  const auto titled = lines_of(annotated("%\nO1234\n(BRACKET REV B)\n(T1 D=6.)\nG21 G90\n"
+                                         "G00 X1.\nM30\n%\n",
+                                         fanuc));
+  CHECK(titled[1] == "O1234");
+  CHECK(titled[2] == "(BRACKET REV B)");
+  CHECK(titled[3].rfind("(NCJ FILE KEY=", 0) == 0);
+  // With the name on the O-number line, the next comment is the post's, not a title.
+  const auto named = lines_of(annotated("%\nO1234 (BRACKET)\n(T1 D=6.)\nG21 G90\nG00 X1.\n"
+                                        "M30\n%\n",
+                                        fanuc));
+  CHECK(named[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  // A Mach3 post's "%" then "(1001)" then "(PART)": the first comment after '%' is the title.
+  const auto mach = lines_of(annotated("%\n(1001)\n(PART)\nG21 G90\nG0 X1\nM30\n%\n"));
+  CHECK(mach[1] == "(1001)");
+  CHECK(mach[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  // Without a % or O-number line, no title: the header is first.
+  const auto plain = lines_of(annotated("(PART)\nG21 G90\nG0 X1\nM2\n"));
+  CHECK(plain[0].rfind("(NCJ FILE KEY=", 0) == 0);
 }
 
 TEST_CASE("the header names the totals, the components, the machine and the per-axis constants") {
@@ -219,5 +244,6 @@ TEST_CASE("a header warning names its block's line in the annotated file, past t
     ++warned;
   }
   CHECK(warned == 1);
-  CHECK(lines[4].rfind("(NCJ", 0) == 0); // the header sits between the % line and the program
+  CHECK(lines[0] == "%");
+  CHECK(lines[1].rfind("(NCJ FILE KEY=", 0) == 0); // the header: between the % line and the program
 }

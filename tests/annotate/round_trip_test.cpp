@@ -58,13 +58,16 @@ TEST_CASE("the tricky CRLF file gets annotations, and only comments are added") 
   CHECK(once != original);
   const auto before = lines_of(original);
   const auto after = lines_of(once);
-  // Header lines are the only new lines; every other line starts with the original line's code.
+  // Header lines are the only new lines, after the % line and the program's title comment;
+  // every other line starts with the original line's code.
   const std::size_t header = after.size() - before.size();
   CHECK(header >= 3);
   CHECK(after[0] == "%");
-  for (std::size_t i = 1; i <= header; ++i)
+  CHECK(after[1] == "(Tricky program)");
+  CHECK(after[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  for (std::size_t i = 2; i < 2 + header; ++i)
     CHECK(after[i].rfind("(NCJ ", 0) == 0);
-  for (std::size_t i = 1; i < before.size(); ++i) {
+  for (std::size_t i = 2; i < before.size(); ++i) {
     CAPTURE(before[i]);
     const std::string& a = after[i + header];
     CHECK(count(a, "(NCJ ") <= 1);
@@ -91,7 +94,7 @@ TEST_CASE("blocks that move or take time get exactly one comment, others none") 
   CHECK(after[5] == "M2");
 }
 
-TEST_CASE("a line at the maximum length is left as it is and no line grows past it") {
+TEST_CASE("a line at the maximum length is left as it is, its comment the line before it") {
   AnnotateOptions options;
   options.max_line_length = 60;
   std::string full = "G1 X3 F100 (";
@@ -106,9 +109,11 @@ TEST_CASE("a line at the maximum length is left as it is and no line grows past 
   }
   CHECK(once.find("\n" + full + "\n") != std::string::npos);
   CHECK(count(once, "G0 X1 (NCJ T=") == 1);
+  CHECK(count(once, "\n(NCJ T=") == 1);
+  CHECK(once.find(")\n" + full + "\n") != std::string::npos);
 }
 
-TEST_CASE("a Fanuc line at the dialect's 128 characters is left alone") {
+TEST_CASE("a Fanuc line at the dialect's 128 characters is left alone, its comment before it") {
   const Dialect fanuc = *find_dialect("fanuc");
   REQUIRE(fanuc.max_line_length == 128);
   std::string full = "G01 X3. F100. (";
@@ -118,6 +123,7 @@ TEST_CASE("a Fanuc line at the dialect's 128 characters is left alone") {
   const std::string once = annotated(original, fanuc);
   CHECK(strip(once) == original);
   CHECK(once.find("\n" + full + "\n") != std::string::npos);
+  CHECK(once.find("\n(NCJ T=") != std::string::npos);
   for (const std::string& line : lines_of(once))
     CHECK(line.size() <= 128);
 }

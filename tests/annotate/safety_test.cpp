@@ -6,6 +6,7 @@
 #include <string>
 
 #include "annotate_helpers.hpp"
+#include "line_alignment.hpp"
 #include "marker.hpp"
 
 using namespace ncjoule;
@@ -13,30 +14,31 @@ using namespace annotate_test;
 
 namespace {
 
-// The text of every comment annotate inserted: header lines and inline comments, found as the
-// difference between the annotated and the original lines.
+// The text of every comment annotate inserted: whole lines (the header, a block's comment on a
+// line of its own) and the comments inserted into lines, found by matching the annotated lines
+// with the original's.
 std::vector<std::string> inserted_comments(const std::string& original, const std::string& once) {
   std::vector<std::string> out;
   const auto after = lines_of(once);
   const auto before = lines_of(original);
-  std::size_t b = 0;
-  for (const std::string& line : after) {
-    if (line.rfind("(NCJ ", 0) == 0) { // a header line (the originals have none)
-      out.push_back(line);
+  const std::vector<int> from = original_lines(after, before);
+  REQUIRE(from.size() == after.size());
+  for (std::size_t j = 0; j < after.size(); ++j) {
+    if (from[j] < 0) {
+      out.push_back(after[j]);
       continue;
     }
-    if (b < before.size() && line == before[b]) {
-      ++b;
-      continue;
-    }
-    if (b < before.size() && line.size() > before[b].size()) {
-      // The inserted part starts at " (NCJ " (the originals hold no "NCJ") and is as long as
-      // the line grew.
-      const std::size_t at = line.find(" (NCJ ");
-      REQUIRE(at != std::string::npos);
-      out.push_back(line.substr(at, line.size() - before[b].size()));
-    }
-    ++b;
+    const std::string& was = before[static_cast<std::size_t>(from[j])];
+    if (after[j] == was) continue;
+    // The inserted part starts at the first byte that differs, less the repeats around it, and
+    // is as long as the line grew: take it from the first " (NCJ" or " ;NCJ" at or before.
+    const std::size_t grew = after[j].size() - was.size();
+    std::size_t at = 0;
+    while (at < was.size() && after[j][at] == was[at])
+      ++at;
+    while (at > 0 && !(after[j][at] == ' ' && starts_with_marker(after[j].substr(at + 1))))
+      --at;
+    out.push_back(after[j].substr(at, grew));
   }
   return out;
 }
@@ -57,9 +59,10 @@ const char* const kProgramWithUnsafeNames = "%\n"
 } // namespace
 
 TEST_CASE("inserted comments hold only safe characters, for every dialect") {
-  for (const char* name : {"linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens"}) {
+  for (const std::string& name : dialect_names()) {
     CAPTURE(name);
     const Dialect dialect = *find_dialect(name);
+    const bool semicolon = dialect.comment_open == ";";
     const std::string original = kProgramWithUnsafeNames;
     const std::string once = annotated(original, dialect);
     CHECK(strip(once) == original);
@@ -69,10 +72,9 @@ TEST_CASE("inserted comments hold only safe characters, for every dialect") {
       CAPTURE(c);
       const std::string body = c.front() == ' ' ? c.substr(1) : c;
       REQUIRE(body.size() > 2);
-      CHECK(body.front() == '(');
-      CHECK(body.back() == ')');
-      CHECK(body.rfind("(NCJ ", 0) == 0);
-      for (char ch : body.substr(1, body.size() - 2)) {
+      CHECK(body.rfind(semicolon ? ";NCJ " : "(NCJ ", 0) == 0);
+      if (!semicolon) CHECK(body.back() == ')');
+      for (char ch : body.substr(1, body.size() - (semicolon ? 1 : 2))) {
         CHECK(static_cast<unsigned char>(ch) < 0x80);
         CHECK(annotation::is_safe_char(ch));
       }
@@ -94,11 +96,12 @@ TEST_CASE("Fanuc-family annotations are in upper case; others keep readable unit
   CHECK(linuxcnc.find("NAME=Generic_3-axis_VMC") != std::string::npos);
 }
 
-TEST_CASE("a line too short for every field drops them in a fixed order, never splits") {
+TEST_CASE("a line too short for every field drops them in a fixed order, then goes on a line "
+          "of its own") {
   const std::string original = "G21 G90\nT1 M6\nG0 X1\nG1 X123.456 Y78.9 F300\nM2\n";
-  std::string previous;
   // From plenty of room down to none: fields go CUM, MRR, P, then OPE, OPT, OP, then E; T stays
-  // while it fits, and then the line gets no annotation at all.
+  // while it fits after the code, and then the comment is the line before the block, with the
+  // fields that fit there.
   const char* const kDropOrder[] = {"CUM=", "MRR=", "P=", "OPE=", "OPT=", "OP=", "E="};
   for (std::size_t limit = 160; limit >= 24; limit -= 2) {
     AnnotateOptions options;
@@ -106,21 +109,33 @@ TEST_CASE("a line too short for every field drops them in a fixed order, never s
     options.max_line_length = limit;
     const std::string once = annotated(original, std::nullopt, options);
     CAPTURE(limit);
+    CAPTURE(once);
     CHECK(strip(once) == original);
-    CHECK(lines_of(once).size() == 5);
-    for (const std::string& line : lines_of(once))
+    const auto after = lines_of(once);
+    const std::vector<int> from = original_lines(after, lines_of(original));
+    REQUIRE(from.size() == after.size());
+    for (const std::string& line : after)
       CHECK(line.size() <= limit);
-    const std::string tool_change = lines_of(once)[1];
+    // The tool change's comment: after its code, else the line before it.
+    std::size_t at = 0;
+    while (at < after.size() && from[at] != 1)
+      ++at;
+    REQUIRE(at < after.size());
+    const bool inline_comment = after[at].find("(NCJ") != std::string::npos;
+    const std::string tool_change = inline_comment ? after[at] : after[at - 1];
+    CHECK(tool_change.find("(NCJ T=") != std::string::npos);
+    if (!inline_comment) {
+      CHECK(from[at - 1] == -1);
+      CHECK(limit < std::string("T1 M6 (NCJ T=6s CK=XXXXXX)").size());
+    }
     // A field that is present implies every field dropped after it is present too.
     for (std::size_t i = 0; i + 1 < std::size(kDropOrder); ++i)
       if (tool_change.find(std::string(" ") + kDropOrder[i]) != std::string::npos)
         CHECK(tool_change.find(std::string(" ") + kDropOrder[i + 1]) != std::string::npos);
-    if (tool_change.find("(NCJ") != std::string::npos)
-      CHECK(tool_change.find(" T=") != std::string::npos);
   }
   AnnotateOptions tight;
   tight.header = false;
-  tight.max_line_length = 25; // "T1 M6" + " (NCJ T=6s CK=XXXXXX)" is 26
+  tight.max_line_length = 19; // "(NCJ T=6s CK=XXXXXX)" is 20: no room even on a line of its own
   CHECK(annotated(original, std::nullopt, tight) == original);
 }
 

@@ -56,17 +56,32 @@ TEST_CASE("strip takes the space annotate inserted and keeps the user's own blan
   CHECK(strip(once) == original);
 }
 
-TEST_CASE("header lines and inline comments have checksums of their own kind") {
+TEST_CASE("each kind of annotation has a checksum of its own, sealed with the file's key") {
   using annotation::MarkKind;
   const annotation::CommentStyle paren;
-  const std::string inline_comment =
-      annotation::marked_comment("NCJ T=1s", MarkKind::Inline, paren);
-  const std::string header_comment =
-      annotation::marked_comment("NCJ T=1s", MarkKind::Header, paren);
-  CHECK(inline_comment != header_comment);
+  const std::string key =
+      annotation::marked_comment(annotation::key_content("ABCDEF"), MarkKind::Key, paren, "");
+  const std::string seed = annotation::key_seed("ABCDEF");
+  auto mark = [&](MarkKind kind) {
+    return annotation::marked_comment("NCJ T=1s", kind, paren, seed);
+  };
+  CHECK(mark(MarkKind::Inline) != mark(MarkKind::Header));
+  CHECK(mark(MarkKind::Inline) != mark(MarkKind::Line));
+  CHECK(mark(MarkKind::Header) != mark(MarkKind::Line));
+  CHECK(annotation::marked_comment("NCJ T=1s", MarkKind::Inline, paren,
+                                   annotation::key_seed("ABCDEG")) != mark(MarkKind::Inline));
   // A header comment at the end of a code line is not an inline annotation, and an inline one on
-  // a line of its own is not a header line.
-  const std::string text = "G0 X1 " + header_comment + "\n" + inline_comment + "\n";
-  CHECK(strip(text) == text);
-  CHECK(strip("G0 X1 " + inline_comment + "\n" + header_comment + "\n") == "G0 X1\n");
+  // a line of its own is not a header line: only the key line goes.
+  const std::string mixed =
+      "G0 X1 " + mark(MarkKind::Header) + "\n" + mark(MarkKind::Inline) + "\nG0 X2\n";
+  CHECK(strip(key + "\n" + mixed) == mixed);
+  CHECK(strip(key + "\nG0 X1 " + mark(MarkKind::Inline) + "\n" + mark(MarkKind::Header) + "\n" +
+              mark(MarkKind::Line) + "\nG0 X2\n") == "G0 X1\nG0 X2\n");
+  // Without the key line, none of them is an annotation.
+  const std::string keyless = "G0 X1 " + mark(MarkKind::Inline) + "\n" + mark(MarkKind::Header) +
+                              "\n" + mark(MarkKind::Line) + "\nG0 X2\n";
+  CHECK(strip(keyless) == keyless);
+  // A key line after the first line with code is no key.
+  CHECK(strip("G0 X0\n" + key + "\nG0 X1 " + mark(MarkKind::Inline) + "\n") ==
+        "G0 X0\n" + key + "\nG0 X1 " + mark(MarkKind::Inline) + "\n");
 }

@@ -2,11 +2,13 @@
 // them out again (docs/annotation.md describes the grammar).
 //
 // Every source line is kept byte for byte. A block that moves or takes time gets one comment
-// appended after its code and before any comment already on the line; a few header lines with
-// the totals go after a leading % line and an O-number line. Every inserted comment carries the
-// marker "NCJ" and a checksum of its own text, so that strip() removes exactly what annotate()
-// inserted and nothing a user wrote: strip(annotate(x)) == x, annotate(annotate(x)) ==
-// annotate(x). No I/O here: the command line reads and writes the files.
+// after its code and before any comment already on the line (or, when the line has no room, on
+// a line of its own before it); a few header lines with the totals go after the program's
+// leading %, O-number and title lines. Every inserted comment carries the
+// marker "NCJ" and a checksum of its own text sealed with the file's key (or, without a header,
+// with its block's line), so that strip() removes exactly what annotate() inserted and nothing a
+// user wrote, nor an annotation copied from another file: strip(annotate(x)) == x,
+// annotate(annotate(x)) == annotate(x). No I/O here: the command line reads and writes the files.
 #pragma once
 
 #include <cstddef>
@@ -48,8 +50,10 @@ struct AnnotateOptions {
 };
 
 // The program in `source` with its predictions as comments. `estimate` must come from
-// estimate_program() on this same source. Annotations already in the source are replaced: the
-// result is the same as annotating strip(source.text).
+// estimate_program() on the program without annotations, strip(source.text) (the source itself
+// when it holds none): an annotation's own comment line would be read as a comment of the
+// program. Annotations already in the source are replaced: the result is the same as annotating
+// strip(source.text).
 std::string annotate(const SourceFile& source, const Estimate& estimate,
                      const MachineProfile& machine, const AnnotateOptions& options = {});
 

@@ -62,12 +62,12 @@ case_ "tool 1e-300 mm"           1 "diameter"    -- "$N" estimate "$P" -m "$M" -
 case_ "canned cycle L10000000"   2 "refused"     -- "$N" estimate cycle.ngc -m "$M" --no-removal
 case_ "exponent under LinuxCNC"  2 "no exponent" -- "$N" estimate exponent.ngc -m "$M" --dialect linuxcnc
 case_ "exponent under Fanuc"     0 "no exponent" -- "$N" estimate exponent.ngc -m "$M" --dialect fanuc
-case_ "arc of radius 1e13"       0 ""            -- "$N" estimate huge_radius.ngc -m "$M" --no-removal
+case_ "arc of radius 1e13"       2 "out of range" -- "$N" estimate huge_radius.ngc -m "$M" --no-removal
 case_ "control bytes"            0 '\x1b'        -- "$N" estimate escapes.ngc -m "$M" --no-removal
-case_ "6e33 s move annotated"    0 ""            -- "$N" annotate far.ngc -m "$M" --no-removal
-case_ "peck Q4 at R1e117"          2 "pecks"       -- "$N" estimate endless_peck.ngc -m "$M" --no-removal --dialect fanuc
-case_ "arc to Y4e24 with removal"  0 "radius"      -- "$N" estimate far_arc.ngc -m "$M" --stock box:0,0,-5,100,80,0 --tool 1:flat:10
-case_ "X6e99 move, then removal" 0 ""            -- "$N" estimate far_then_drill.ngc -m "$M" --stock box:0,0,-5,20,20,0 --grid 0.5 --tool 1:flat:6
+case_ "6e33 s move annotated"    2 "out of range" -- "$N" annotate far.ngc -m "$M" --no-removal
+case_ "peck Q4 at R1e117"          2 "out of range" -- "$N" estimate endless_peck.ngc -m "$M" --no-removal --dialect fanuc
+case_ "arc to Y4e24 with removal"  2 "out of range" -- "$N" estimate far_arc.ngc -m "$M" --stock box:0,0,-5,100,80,0 --tool 1:flat:10
+case_ "X6e99 move, then removal" 2 "out of range" -- "$N" estimate far_then_drill.ngc -m "$M" --stock box:0,0,-5,20,20,0 --grid 0.5 --tool 1:flat:6
 case_ "tool_change_s = 1e308"    2 "plausible"   -- "$N" estimate "$P" -m huge_tool_change.toml
 case_ "directory as profile"     2 "directory"   -- "$N" estimate "$P" -m profile_dir
 case_ "stock 1e300 wide"         2 "stock"       -- "$N" estimate "$P" -m "$M" --stock box:-1e300,-1e300,-1e300,1e300,1e300,1e300

@@ -7,6 +7,7 @@
 
 #include "codes.hpp"
 #include "expression.hpp"
+#include "value_limits.hpp"
 
 namespace ncjoule::detail {
 
@@ -57,6 +58,21 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
     }
     v.letter[slot(w.letter)] = value;
     v.column[slot(w.letter)] = w.column;
+  }
+  // Values beyond what any control takes (value_limits.hpp), in the units the block itself
+  // may set.
+  bool inch = state_.inch;
+  if (has_g(v, 200) || (dialect_.g70_g71_units && (has_g(v, 700) || has_g(v, 7000))))
+    inch = true;
+  else if (has_g(v, 210) || (dialect_.g70_g71_units && (has_g(v, 710) || has_g(v, 7100))))
+    inch = false;
+  for (int s = 0; s < int(v.letter.size()); ++s) {
+    if (!v.letter[s]) continue;
+    const char letter = s == slot('@') ? '@' : s == slot('^') ? '^' : char('a' + s);
+    if (auto why = word_out_of_range(letter, *v.letter[s], inch)) {
+      error(v.column[s], std::move(*why));
+      ok = false;
+    }
   }
   // Parameter assignments take effect after every word of the line has been read, and all of
   // them read the values from before the line: "#1=5 #2=[#1+1]" sets #2 from the old #1.

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "codes.hpp"
+#include "value_limits.hpp"
 
 namespace ncjoule::detail {
 
@@ -266,9 +267,12 @@ void Interpreter::check_m_codes(const BlockValues& v) {
 void Interpreter::convert_dwell(const Block& b, const BlockValues& v) {
   if (has_g(v, 40)) {
     double seconds = 0;
+    int column = v.g_column(40);
     if (dialect_.dwell_s_word && v.has('s') && !v.has('p')) {
       seconds = *v['s']; // Marlin, RepRapFirmware: G4 S in seconds
+      column = v.column[slot('s')];
     } else if (v.has('p')) {
+      column = v.column[slot('p')];
       const double p = *v['p'];
       const bool integer_p = std::abs(p - std::round(p)) < 1e-9;
       if (dialect_.dwell_p_in_ms ||
@@ -278,10 +282,16 @@ void Interpreter::convert_dwell(const Block& b, const BlockValues& v) {
         seconds = p;
     } else if (dialect_.dwell_x_word && v.has('x')) {
       seconds = *v['x'];
+      column = v.column[slot('x')];
     } else {
       error(v.g_column(40), "G4 needs a P word (dwell time)");
     }
     if (seconds < 0) error(v.g_column(40), "negative dwell time"), seconds = 0;
+    if (seconds > limit::kDwellS) {
+      error(column, "dwell out of range: dwells go to 99,999.999 s (P99999999 in ms), the most "
+                    "an industrial control takes");
+      return;
+    }
     CanonCommand c = make(CanonKind::Dwell);
     c.value = seconds;
     emit(std::move(c));

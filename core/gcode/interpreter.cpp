@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "codes.hpp"
+#include "value_limits.hpp"
 
 namespace ncjoule::detail {
 
@@ -121,6 +122,13 @@ void Interpreter::emit(CanonCommand c) {
       error(0, "more than " + std::to_string(options_.max_commands) +
                    " canonical commands: stopped (runaway loop?)");
     stop();
+    return;
+  }
+  // The last check before the planner: what words in range still made out of range (a G91
+  // sum, a cycle's arguments, a frame) is refused here, the machine staying where it was.
+  if (auto why = command_out_of_range(c)) {
+    error(block_.columns.empty() ? 0 : block_.columns.front(), std::move(*why));
+    if (is_move(c.kind)) pos_ = c.start;
     return;
   }
   if (is_move(c.kind)) {

@@ -11,6 +11,10 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // Direction components below this are treated as "the axis does not move".
 constexpr double kNegligible = 1e-12;
+// The slowest programmed speed a move is timed at (mm/s, or deg/s). The interpreter bounds F
+// and every length, but G95 multiplies F by any spindle speed the program gives (S0.000001):
+// below this a move could take longer than a double holds, and sums of times become infinite.
+constexpr double kSlowestSpeed = 1e-9;
 
 // The limits one move has to respect, gathered as caps and lowered one axis at a time.
 struct Caps {
@@ -162,7 +166,12 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
   m.accel = caps.accel;
   m.vmax = m.vmax_machine = caps.speed;
   if (!rapid) {
-    const double programmed = programmed_speed(move, m.length, warnings);
+    double programmed = programmed_speed(move, m.length, warnings);
+    if (programmed > 0 && programmed < kSlowestSpeed) {
+      warnings.add("feed slower than 1e-9 mm/s", move.line,
+                   "feed slower than 0.000000001 mm/s: timed at that speed");
+      programmed = kSlowestSpeed;
+    }
     if (programmed > 0 && std::isfinite(programmed)) {
       m.vmax = std::min(m.vmax, programmed);
     } else if (move.state.feed_mode != FeedMode::UnitsPerRevolution) {

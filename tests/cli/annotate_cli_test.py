@@ -441,13 +441,14 @@ def overload_and_fields():
                 " ".join(args), len(a.stdout), full))
             st = run("strip", "-", "-o", "-", stdin=a.stdout)
             check(st.stdout == read(SAMPLE), "%s: strip gives the original" % " ".join(args))
-        # A move of 1.7e30 hours (found by fuzzing): its times are written without a '+'
-        # ("1.67e30h"), so strip still recognises every comment.
-        far = b"G21 G90\nG0 X0 Y0 Z0\nG1 X100000000000000000000000000000 F0.001\nM2\n"
+        # The longest move a program may make (X99,999.999 at F0.0001, 1.7e7 hours; a move to
+        # X1e29, found by fuzzing, is now out of range): its times are written without an
+        # exponent or a '+', so strip still recognises every comment.
+        far = b"G21 G90\nG0 X0 Y0 Z0\nG1 X99999.999 F0.0001\nM2\n"
         a = run("annotate", "-", "--machine", GENERIC, "--no-removal", stdin=far)
         st = run("strip", "-", "-o", "-", stdin=a.stdout)
-        check(a.returncode == 0 and b"e30h" in a.stdout and b"+" not in a.stdout and st.stdout == far,
-              "a 1e30-hour move annotates without '+' and strips back")
+        check(a.returncode == 0 and b"T=16666666h30m00s" in a.stdout and b"+" not in a.stdout
+              and st.stdout == far, "a 1.7e7-hour move annotates without '+' and strips back")
         bad = run("annotate", SAMPLE, "--machine", GENERIC, "--fields", "T,WATTS")
         check(bad.returncode == 1 and "WATTS" in bad.stderr.decode(), "--fields with an unknown name")
 

@@ -129,3 +129,24 @@ TEST_CASE("S-curve option: a long move takes a/j longer than the trapezoid") {
   REQUIRE(v * j >= a * a); // both ramps reach the full acceleration
   CHECK(t.total_s == doctest::Approx(100 / v + v / a + a / j));
 }
+
+TEST_CASE("a feed too slow for a double's range is timed at the slowest speed, finitely") {
+  // G95 with a spindle speed of 1e-300 rpm: 1e-306 mm/s, a move of 1e300 s and more, and sums
+  // of such that overflow. Held to 1e-9 mm/s with a warning.
+  CanonCommand slow = feed(at(0, 0), at(100, 0), 0.0001);
+  slow.state.feed_mode = FeedMode::UnitsPerRevolution;
+  slow.state.spindle = SpindleDir::Clockwise;
+  slow.state.spindle_rpm = 1e-300;
+  for (const JunctionRule rule : {JunctionRule::Tolerance, JunctionRule::LinuxCnc29}) {
+    MachineProfile m = round_machine();
+    m.kinematics.junction_rule = rule;
+    const Timeline t = plan({slow, slow, slow}, m);
+    CHECK(std::isfinite(t.total_s));
+    CHECK(t.total_s > 1e11);
+    CHECK(t.total_s < 1e12);
+    bool warned = false;
+    for (const Diagnostic& d : t.diagnostics)
+      warned = warned || d.message.find("feed slower than") != std::string::npos;
+    CHECK(warned);
+  }
+}

@@ -13,6 +13,9 @@ std::string format_significant(double value, int digits, int max_decimals) {
   int decimals = 0;
   if (value != 0) {
     const int magnitude = static_cast<int>(std::floor(std::log10(std::fabs(value))));
+    // A whole number: its digits in full, and past what a double holds exactly, the
+    // significant ones and zeros (never "%.0f"'s binary tail, never an exponent).
+    if (magnitude >= digits - 1) return whole_number_text(value, digits);
     decimals = std::clamp(digits - 1 - magnitude, 0, max_decimals);
   }
   char text[64];

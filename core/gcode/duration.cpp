@@ -2,11 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 namespace ncjoule {
 namespace {
 
-constexpr double kHugeHours = 1e9; // above this, hours are written in scientific notation
+constexpr double kHugeHours = 1e9; // from here on, hours alone, to three significant digits
 
 } // namespace
 
@@ -24,13 +25,30 @@ ClockParts split_duration(double seconds, double step) {
   return p;
 }
 
-std::string huge_hours(double hours) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", hours);
-  // "1.67e25", not "1.67e+25": a '+' is not a character every controller takes in a comment.
-  std::string out = text;
-  if (const std::size_t plus = out.find("e+"); plus != std::string::npos) out.erase(plus + 1, 1);
+std::string whole_number_text(double value, int digits) {
+  if (!std::isfinite(value)) value = 0;
+  digits = digits < 1 ? 1 : digits > 17 ? 17 : digits;
+  // Exact up to 2^53: every digit printed is the number's own.
+  if (std::fabs(value) < 9e15) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.0f", value);
+    return std::string(text) == "-0" ? "0" : text;
+  }
+  // Beyond, the digits a double holds and zeros: "%.*e" rounds them ("1.67e+25"), which are
+  // then written out in full.
+  char text[48];
+  std::snprintf(text, sizeof text, "%.*e", digits - 1, value);
+  std::string out;
+  const char* c = text;
+  for (; *c != 'e'; ++c)
+    if (*c != '.') out += *c;
+  const long exponent = std::strtol(c + 1, nullptr, 10);
+  out.append(static_cast<std::size_t>(exponent - (digits - 1)), '0');
   return out;
+}
+
+std::string huge_hours(double hours) {
+  return whole_number_text(hours, 3);
 }
 
 std::string duration_words(double seconds) {

@@ -3,6 +3,10 @@
 
 #include "number_format.hpp"
 
+#include <cmath>
+#include <limits>
+#include <string>
+
 using namespace ncjoule::annotation;
 
 TEST_CASE("significant digits without exponents or trailing zeros") {
@@ -41,4 +45,49 @@ TEST_CASE("user text becomes one safe token") {
   CHECK(safe_token("  Face (rough) – 50% #1 ", 24) == "Face_rough_50_1");
   CHECK(safe_token("a=b", 24) == "a_b");
   CHECK(safe_token("Very long operation name indeed", 10) == "Very_long");
+}
+
+TEST_CASE("large values keep their significant digits and zeros, never an exponent") {
+  CHECK(format_significant(1e23, 3, 3) ==
+        "100000000000000000000000"); // not 99999999999999991611392
+  CHECK(format_significant(-4.56789e20, 3, 3) == "-457000000000000000000");
+  CHECK(format_significant(123456789, 3, 3) == "123456789"); // whole numbers in full
+  CHECK(format_si(1e30, "J") == "1000000000000000000TJ");
+  CHECK(format_si(2.5e15, "J") == "2500TJ");
+  // 1e11 s: a million dwells of 99,999.999 s in a loop, in hours, minutes and seconds.
+  CHECK(format_duration(99999.999 * 1e6) == "27777777h30m00s");
+  CHECK(format_duration(6e28) == "16700000000000000000000000h");
+  CHECK(format_duration(std::numeric_limits<double>::infinity()) == "0s");
+  CHECK(format_duration(std::nan("")) == "0s");
+  CHECK(format_si(std::numeric_limits<double>::quiet_NaN(), "W") == "0W");
+}
+
+TEST_CASE("every finite value gives digits, a point and its unit only") {
+  // From the smallest to the largest double, both signs: no 'e', no 'inf' or 'nan', no '+'.
+  auto plain = [](const std::string& text, std::string_view unit) {
+    std::string number = text.substr(0, text.size() - unit.size());
+    while (!number.empty() && std::string_view("kMGT").find(number.back()) != std::string::npos)
+      number.pop_back();
+    bool ok = !number.empty() && text.size() <= 320;
+    for (char c : number)
+      ok = ok && ((c >= '0' && c <= '9') || c == '.' || c == '-');
+    return ok;
+  };
+  auto plain_duration = [](const std::string& text) {
+    bool ok = !text.empty() && text.size() <= 320 && (text.back() == 's' || text.back() == 'h');
+    for (char c : text)
+      ok = ok && ((c >= '0' && c <= '9') || c == '.' || c == 'h' || c == 'm' || c == 's');
+    return ok;
+  };
+  for (double magnitude = 1e-300; std::isfinite(magnitude); magnitude *= 7.3) {
+    for (double value : {magnitude, -magnitude}) {
+      CAPTURE(value);
+      CHECK(plain(format_significant(value, 3, 3), ""));
+      CHECK(plain(format_significant(value, 4, 6), ""));
+      CHECK(plain(format_si(value, "J"), "J"));
+      CHECK(plain_duration(format_duration(value)));
+    }
+  }
+  CHECK(plain(format_si(std::numeric_limits<double>::max(), "J"), "J"));
+  CHECK(plain_duration(format_duration(std::numeric_limits<double>::max())));
 }

@@ -18,8 +18,8 @@ TEST_CASE("durations in words and on a clock") {
 }
 
 TEST_CASE("durations never overflow and never go negative") {
-  CHECK(duration_words(6e28) == "1.67e25 h");
-  CHECK(duration_clock(6e28) == "1.67e25 h");
+  CHECK(duration_words(6e28) == "16700000000000000000000000 h"); // no exponent
+  CHECK(duration_clock(6e28) == "16700000000000000000000000 h");
   CHECK(duration_words(1e12) == "277777777 h 46 min 40.0 s");
   CHECK(duration_words(-5) == "0.0 s");
   CHECK(duration_words(std::numeric_limits<double>::quiet_NaN()) == "0.0 s");
@@ -42,4 +42,19 @@ TEST_CASE("durations past double precision split into hours alone, never an out-
     CHECK(p.seconds < 60);
     CHECK(p.hours == doctest::Approx(seconds / 3600));
   }
+}
+
+TEST_CASE("whole numbers are written out in full, never with an exponent") {
+  CHECK(whole_number_text(0, 3) == "0");
+  CHECK(whole_number_text(-0.2, 3) == "0");
+  CHECK(whole_number_text(1234567, 3) == "1234567"); // exact where a double is
+  CHECK(whole_number_text(-98765.4, 3) == "-98765");
+  CHECK(whole_number_text(1.666e25, 3) == "16700000000000000000000000");
+  CHECK(whole_number_text(9.996e20, 3) == "1000000000000000000000"); // rounding carries
+  CHECK(whole_number_text(-2.5e17, 2) == "-250000000000000000");
+  const std::string most = whole_number_text(std::numeric_limits<double>::max(), 3);
+  CHECK(most.size() == 309);
+  CHECK(most.rfind("180", 0) == 0);
+  CHECK(whole_number_text(std::numeric_limits<double>::infinity(), 3) == "0");
+  CHECK(huge_hours(3e12) == "3000000000000");
 }

@@ -1,6 +1,7 @@
 // Durations as ncjoule writes them: the one place that turns seconds into hours, minutes and
 // seconds. Negative, NaN and infinite durations read as 0; hours are never an integer type, so
-// no duration overflows (a 6e28 s move is "1.67e25 h", not a negative number).
+// no duration overflows, and no number is written with an exponent (a 6e28 s move is
+// "16700000000000000000000000 h", not a negative number and not "1.67e25").
 #pragma once
 
 #include <string>
@@ -20,7 +21,12 @@ ClockParts split_duration(double seconds, double step);
 std::string duration_words(double seconds);
 // "2:05", "1:02:03" (charts and tables).
 std::string duration_clock(double seconds);
-// Hours beyond what a clock face shows as digits: "1.67e25" (with the caller's unit).
+// Hours beyond what a clock face shows (1e9 and up), to three significant digits:
+// "16700000000000000000000000" (with the caller's unit).
 std::string huge_hours(double hours);
+
+// A whole number written out in full, never with an exponent: exact below 9e15, beyond that
+// rounded to `digits` significant digits and zeros ("1.67e25" -> "16700000000000000000000000").
+std::string whole_number_text(double value, int digits);
 
 } // namespace ncjoule

@@ -80,8 +80,18 @@ std::size_t operand_length(std::string_view t, std::size_t pos, const BracketMat
 void add_error(Block& b, int column, std::string message) {
   b.errors.push_back(Diagnostic{Severity::Error, {}, 0, column, std::move(message)});
 }
-void add_warning(Block& b, int column, std::string message) {
-  b.warnings.push_back(Diagnostic{Severity::Warning, {}, 0, column, std::move(message)});
+// A line's warnings, at most kMaxLineWarnings of them: a line of millions of stray words (4 MB
+// of "x[") made one each, gigabytes of text for the interpreter to drop past its own cap of
+// 1000. The message is made only when it is kept.
+constexpr std::size_t kMaxLineWarnings = 100;
+template <class Message> void add_warning(Block& b, int column, Message&& message) {
+  if (b.warnings.size() > kMaxLineWarnings) return;
+  if (b.warnings.size() == kMaxLineWarnings) {
+    b.warnings.push_back(
+        Diagnostic{Severity::Warning, {}, 0, column, "more problems on this line: not listed"});
+    return;
+  }
+  b.warnings.push_back(Diagnostic{Severity::Warning, {}, 0, column, std::string(message())});
 }
 
 bool is_name_char(char c) {
@@ -109,26 +119,32 @@ void Block::clear() {
 }
 
 void BracketMatches::assign(std::string_view text) {
-  opens_.clear();
-  closes_.clear();
-  open_.clear();
-  for (std::size_t i = text.find('['); i < text.size(); ++i) {
+  match_.clear();
+  text_ = {};
+  const std::size_t first = text.find('[');
+  if (first == std::string_view::npos) return;
+  if (text.size() >= kNone) {
+    text_ = text;
+    return;
+  }
+  match_.assign(text.size(), kNone);
+  std::uint32_t open = kNone; // the innermost '[' not closed yet; each links to the one around it
+  for (std::size_t i = first; i < text.size(); ++i) {
     if (text[i] == '[') {
-      open_.push_back(opens_.size());
-      opens_.push_back(i);
-      closes_.push_back(std::string_view::npos);
-    } else if (text[i] == ']' && !open_.empty()) {
-      closes_[open_.back()] = i;
-      open_.pop_back();
+      match_[i] = open;
+      open = static_cast<std::uint32_t>(i);
+    } else if (text[i] == ']' && open != kNone) {
+      const std::uint32_t around = match_[open];
+      match_[open] = static_cast<std::uint32_t>(i);
+      open = around;
     }
   }
 }
 
 std::size_t BracketMatches::length(std::size_t pos) const {
-  const auto it = std::lower_bound(opens_.begin(), opens_.end(), pos);
-  if (it == opens_.end() || *it != pos) return 0;
-  const std::size_t close = closes_[std::size_t(it - opens_.begin())];
-  return close == std::string_view::npos ? 0 : close - pos + 1;
+  if (!text_.empty()) return bracket_length(text_, pos, nullptr);
+  if (pos >= match_.size() || match_[pos] == kNone || match_[pos] < pos) return 0;
+  return match_[pos] - pos + 1;
 }
 
 std::size_t value_length(std::string_view t, std::size_t pos, const BracketMatches* brackets) {
@@ -183,9 +199,10 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       const std::size_t close = comment_close(line, i, dialect);
       if (close == std::string_view::npos) {
         // What the controller makes of it varies; the code before it is kept.
-        add_warning(b, int(i) + 1,
-                    "comment is not closed: expected ')' before the end of the line; taken as "
-                    "a comment to the end of the line");
+        add_warning(b, int(i) + 1, [] {
+          return "comment is not closed: expected ')' before the end of the line; taken as a "
+                 "comment to the end of the line";
+        });
         b.comments.push_back({line.substr(i + 1), int(i) + 1});
         break;
       }
@@ -197,7 +214,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     } else if (c == ';') {
       // Fanuc family: ';' is the end-of-block character (EOB) of tape format.
       if (line.find_first_not_of(" \t", i + 1) != std::string_view::npos)
-        add_warning(b, int(i) + 1, "text after ';' (end of block) is ignored");
+        add_warning(b, int(i) + 1, [] { return "text after ';' (end of block) is ignored"; });
       break;
     } else {
       b.code.push_back(to_lower(c));
@@ -294,9 +311,10 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       if (at < code.size() && code[at] == '=' && is_letter(c)) ++at; // Sinumerik "X=10"
       std::size_t len = value_length(code, at, brackets);
       if (len == 0) {
-        add_warning(b, b.columns[p],
-                    std::string("word '") + char(std::toupper(c)) +
-                        "' has no number after it: ignored (the rest of the block still runs)");
+        add_warning(b, b.columns[p], [&] {
+          return std::string("word '") + char(std::toupper(c)) +
+                 "' has no number after it: ignored (the rest of the block still runs)";
+        });
         ++p;
         continue;
       }
@@ -305,9 +323,10 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
         // "R1=5" (Sinumerik R parameters) and the like: an assignment this interpreter does
         // not keep.
         std::size_t vlen = value_length(code, next + 1, brackets);
-        add_warning(b, b.columns[p],
-                    "assignment '" + std::string(code.substr(p, next + 1 + vlen - p)) +
-                        "' is not supported: ignored");
+        add_warning(b, b.columns[p], [&] {
+          return "assignment '" + std::string(code.substr(p, next + 1 + vlen - p)) +
+                 "' is not supported: ignored";
+        });
         p = next + 1 + vlen;
         continue;
       }
@@ -341,9 +360,10 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       while (q < code.size() && !is_letter(code[q]) && code[q] != '#' && code[q] != '@' &&
              code[q] != '^')
         ++q;
-      add_warning(b, b.columns[p],
-                  "unexpected '" + std::string(code.substr(p, q - p)) +
-                      "': ignored (the rest of the block still runs)");
+      add_warning(b, b.columns[p], [&] {
+        return "unexpected '" + std::string(code.substr(p, q - p)) +
+               "': ignored (the rest of the block still runs)";
+      });
       p = q;
     }
   }

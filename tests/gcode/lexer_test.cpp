@@ -136,3 +136,26 @@ TEST_CASE("Fanuc dialect: a semicolon is not a comment, parentheses are") {
   CHECK(b.errors.empty());
   CHECK(b.comments[0].text == "A;B");
 }
+
+TEST_CASE("brackets are matched as the scan of each word would match them") {
+  const Block b = lex("G1 X[1+[2]] Y[3 Z[4] A[[5]]");
+  // X's value ends at its own ']'; Y's '[' is never closed (Z's is), so Y has no value.
+  REQUIRE(b.words.size() == 4);
+  CHECK(b.words[1].value == "[1+[2]]");
+  CHECK(b.words[2].letter == 'z');
+  CHECK(b.words[2].value == "[4]");
+  CHECK(b.words[3].value == "[[5]]");
+  CHECK(b.warnings.size() == 2); // Y without a value, the '[3' after it
+  CHECK(ncjoule::detail::value_length("--#-#[1]]", 0) == 8);
+  CHECK(ncjoule::detail::value_length("+#<a>b", 0) == 5);
+  CHECK(ncjoule::detail::value_length("###", 0) == 0);
+}
+
+TEST_CASE("a line of a hundred thousand stray words keeps a hundred warnings and says so") {
+  std::string line = "G1 ";
+  for (int i = 0; i < 100000; ++i)
+    line += "x[";
+  const Block b = lex(line);
+  REQUIRE(b.warnings.size() == 101);
+  CHECK(b.warnings.back().message.find("not listed") != std::string::npos);
+}

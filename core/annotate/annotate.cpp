@@ -189,6 +189,27 @@ struct BlockNote {
   bool own_line = false;
 };
 
+// The block's comment on `text`: after its code with the fields that fit there, else, when not
+// even its time fits, on a line of its own before it (where the dialect allows such a line).
+BlockNote block_note(std::string_view text, const std::vector<Field>& fields,
+                     const Dialect& dialect, const WriteStyle& style) {
+  BlockNote note;
+  // Sealed with the file's key, or without a header with the block's line.
+  const std::string seed = style.seed.empty() ? line_seed(text) : style.seed;
+  const std::optional<std::size_t> at = insertion_point(text, dialect, style.comment);
+  if (at && text.size() < style.max_line_length) {
+    note.comment = block_comment(fields, style.max_line_length - text.size(), MarkKind::Inline,
+                                 style.comment, seed);
+    note.at = *at;
+  }
+  if (note.comment.empty() && takes_comment_lines(dialect)) {
+    note.comment =
+        block_comment(fields, style.max_line_length + 1, MarkKind::Line, style.comment, seed);
+    note.own_line = !note.comment.empty();
+  }
+  return note;
+}
+
 } // namespace
 } // namespace annotation
 
@@ -240,77 +261,51 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
     }
   }
 
-  // Each block's comment, after its code or, when not even its time fits there, on a line of
-  // its own before it.
-  std::vector<BlockNote> notes(n);
-  const bool comment_lines = takes_comment_lines(estimate.dialect);
+  // The header: the key, the summary's lines, then one line for each warning, which names its
+  // block's line in the output: known once the lines are written, so the header goes in last.
+  const std::size_t header_line = header_at.value_or(n); // n: none
+  std::vector<std::string> header;
+  std::vector<WarningText> warnings;
+  std::vector<int> output_line;
+  if (header_at) {
+    header.push_back(key_line);
+    for (std::string& h : summary_lines(estimate, machine, header_style))
+      header.push_back(std::move(h));
+    warnings = header_warnings(estimate);
+    output_line.assign(n, 0);
+  }
+
+  // Every line as it was, old annotations out, each block with its comment after its code or on
+  // a line of its own before it. Written as they come: a program of millions of blocks keeps
+  // none of their comments.
+  std::string out;
+  out.reserve(source.text.size() + source.text.size() / 2 + 1024);
+  std::size_t header_offset = 0;
+  int next = 1; // the output line the next line lands on
   for (std::size_t i = 0; i < n; ++i) {
+    if (i == header_line) {
+      header_offset = out.size();
+      next += static_cast<int>(header.size() + warnings.size());
+    }
     if (lines.removed[i]) continue;
     const std::string_view text = lines.text[i];
     const LineSummary* s = summary[i];
     const auto op = operations.find(i);
     const bool op_start = op != operations.end();
-    const bool timed = s && (s->has_move || s->time_s > 0);
-    if (!timed && !op_start) continue;
-    const std::vector<Field> fields =
-        block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr, options.fields);
-    const std::string seed = style.seed.empty() ? line_seed(text) : style.seed;
-    BlockNote& note = notes[i];
-    const std::optional<std::size_t> at = insertion_point(text, estimate.dialect, style.comment);
-    if (at && text.size() < style.max_line_length) {
-      note.comment = block_comment(fields, style.max_line_length - text.size(), MarkKind::Inline,
-                                   style.comment, seed);
-      note.at = *at;
-    }
-    if (note.comment.empty() && comment_lines) {
-      note.comment =
-          block_comment(fields, style.max_line_length + 1, MarkKind::Line, style.comment, seed);
-      note.own_line = !note.comment.empty();
-    }
-  }
-
-  // Where each source line lands in the output: old annotation lines leave, the new header
-  // comes in at header_at (the key, the summary's lines, then one line for each warning), and a
-  // block's own comment line comes before it.
-  std::vector<std::string> header;
-  if (header_at) {
-    header.push_back(key_line);
-    for (std::string& h : summary_lines(estimate, machine, header_style))
-      header.push_back(std::move(h));
-    const std::vector<WarningText> warnings = header_warnings(estimate);
-    std::vector<int> output_line(n + 1, 0);
-    int next = 1;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (i == *header_at) next += static_cast<int>(header.size() + warnings.size());
-      if (notes[i].own_line) ++next;
-      output_line[i] = next;
-      if (!lines.removed[i]) ++next;
-    }
-    for (std::string& w : warning_lines(warnings, header_style, [&](int line) {
-           const auto i = in_source(line - 1);
-           return i ? output_line[*i] : line;
-         }))
-      header.push_back(std::move(w));
-  }
-
-  std::string out;
-  out.reserve(source.text.size() + source.text.size() / 2 + 1024);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (header_at && *header_at == i) {
-      const std::string_view eol = file_eol(lines, i);
-      for (const std::string& h : header) {
-        out += h;
-        out += eol;
-      }
-    }
-    if (lines.removed[i]) continue;
-    const std::string_view text = lines.text[i];
-    const BlockNote& note = notes[i];
-    if (note.comment.empty()) {
-      out += text;
-    } else if (note.own_line) {
+    BlockNote note;
+    if ((s && (s->has_move || s->time_s > 0)) || op_start)
+      note = block_note(
+          text,
+          block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr, options.fields),
+          estimate.dialect, style);
+    if (note.own_line) {
       out += note.comment;
       out += lines.eol[i].empty() ? file_eol(lines, i) : lines.eol[i];
+      ++next;
+    }
+    if (header_at) output_line[i] = next;
+    ++next;
+    if (note.comment.empty() || note.own_line) {
       out += text;
     } else {
       out += text.substr(0, note.at);
@@ -319,6 +314,21 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
       out += text.substr(note.at);
     }
     out += lines.eol[i];
+  }
+
+  if (header_at) {
+    for (std::string& w : warning_lines(warnings, header_style, [&](int line) {
+           const auto i = in_source(line - 1);
+           return i ? output_line[*i] : line;
+         }))
+      header.push_back(std::move(w));
+    const std::string_view eol = file_eol(lines, header_line);
+    std::string text;
+    for (const std::string& h : header) {
+      text += h;
+      text += eol;
+    }
+    out.insert(header_offset, text);
   }
   return out;
 }

@@ -31,6 +31,9 @@ std::optional<std::size_t> insertion_point(std::string_view line, const Dialect&
                                            const CommentStyle& style) {
   const detail::CodeSpan span = detail::code_span(line, dialect);
   if (span.code_begin == std::string_view::npos) return std::nullopt;
+  // An argument list or a string the line ends inside: any place after its opening is inside it
+  // (and the code before it is not all of the block's).
+  if (span.unclosed) return std::nullopt;
   std::size_t end;
   std::size_t floor;
   if (style.open == ";") {

@@ -63,8 +63,9 @@ namespace ncjoule {
 namespace {
 
 // The one reading of a line's comments and code: `comment(begin, end, open)` for each comment
-// (its text is line[begin, end), `open` where its opening character is), `code(begin, end)` for
-// each run of code, `stop(at)` where an end-of-block mark ends the scan.
+// (its text is line[begin, end), `open` where its opening character is), `code(begin, end,
+// closed)` for each run of code (closed: false for an argument list or a string the line ends
+// inside), `stop(at)` where an end-of-block mark ends the scan.
 template <class Comment, class Code, class Stop>
 void scan_line(std::string_view line, const Dialect& dialect, Comment comment, Code code,
                Stop stop) {
@@ -77,13 +78,13 @@ void scan_line(std::string_view line, const Dialect& dialect, Comment comment, C
       const std::size_t len = detail::paren_length(line, i);
       const std::size_t begin = i;
       i = len ? i + len : line.size();
-      code(begin, i);
+      code(begin, i, len != 0);
     } else if (c == '"' && dialect.paren_argument_lists) {
       // A Sinumerik string ("a;b(c)"): code, whatever it holds.
       const std::size_t close = line.find('"', i + 1);
       const std::size_t begin = i;
       i = close == std::string_view::npos ? line.size() : close + 1;
-      code(begin, i);
+      code(begin, i, close != std::string_view::npos);
     } else if (c == '*' && dialect.star_block_end) {
       stop(i);
       return;
@@ -104,7 +105,7 @@ void scan_line(std::string_view line, const Dialect& dialect, Comment comment, C
         stop(i);
       return;
     } else {
-      code(i, i + 1);
+      code(i, i + 1, true);
       ++i;
     }
   }
@@ -119,7 +120,7 @@ LineComments line_comments(std::string_view line, const Dialect& dialect) {
       [&](std::size_t begin, std::size_t end, std::size_t open) {
         out.comments.push_back({trim(line.substr(begin, end - begin)), int(open) + 1});
       },
-      [&](std::size_t, std::size_t) { out.has_code = true; }, [](std::size_t) {});
+      [&](std::size_t, std::size_t, bool) { out.has_code = true; }, [](std::size_t) {});
   return out;
 }
 
@@ -133,9 +134,10 @@ CodeSpan code_span(std::string_view line, const Dialect& dialect) {
         if (span.stop == std::string_view::npos) span.stop = open;
         if (line[open] == ';') span.semicolon = open;
       },
-      [&](std::size_t begin, std::size_t end) {
+      [&](std::size_t begin, std::size_t end, bool closed) {
         if (span.code_begin == std::string_view::npos) span.code_begin = begin;
         span.code_end = end;
+        span.unclosed = !closed;
       },
       [&](std::size_t at) {
         if (span.stop == std::string_view::npos) span.stop = at;

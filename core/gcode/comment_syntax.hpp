@@ -26,6 +26,9 @@ struct CodeSpan {
   std::size_t code_end = 0;                        // one past the last code byte
   std::size_t stop = std::string_view::npos;       // first comment or block end; npos: none
   std::size_t semicolon = std::string_view::npos;  // the ';' of a comment to the line's end
+  // The line ends inside an argument list or a string (MSG("a;b): nothing written at its end
+  // would be outside them.
+  bool unclosed = false;
 };
 CodeSpan code_span(std::string_view line, const Dialect& dialect);
 

@@ -84,6 +84,23 @@ TEST_CASE("a string's ';' and parentheses are no comment to the scanner annotate
   CHECK(canon_of(once, siemens, original) == canon_of(original, siemens, original));
 }
 
+TEST_CASE("a line ending inside a string or an argument list gets its comment on a line before") {
+  // Found by fuzzing: at the end of 'MSG("a;b(' the comment was inside the string, and the
+  // message said it.
+  const Dialect siemens = *find_dialect("siemens");
+  for (const char* open : {"G0 X1 MSG(\"a;b(", "G0 X1 MSG(\"a;b", "G0 X2 CYCLE81(10,0,2"}) {
+    CAPTURE(open);
+    const std::string original = std::string("G0 X0 Y0 Z5\n") + open + "\nG1 X5 F100\nM30\n";
+    for (const AnnotateOptions& options : {AnnotateOptions{}, no_header()}) {
+      const std::string once = annotated(original, siemens, options);
+      CHECK(strip(once) == original);
+      CHECK(annotated(once, siemens, options) == once);
+      CHECK(once.find(std::string("\n") + open + "\n") != std::string::npos); // as it was
+      CHECK(canon_of(once, siemens, original) == canon_of(original, siemens, original));
+    }
+  }
+}
+
 TEST_CASE("Marlin and RepRapFirmware: ';' annotations, no parentheses Marlin would read as code") {
   const Dialect reprap = *find_dialect("reprap");
   const std::string original = "G21\nG90\nG0 X0 Y0 Z5\nG1 X20 F600 ; perimeter\nG4 P500\nM84\n";

@@ -83,6 +83,7 @@ struct Planner::Impl {
   double finish();
 
   void limit_and_chain(WaitingCommand& w);
+  void come_to_rest();
   void look_ahead(bool at_end);
   bool ready(const WaitingCommand& w) const;
   void time(WaitingCommand& w);
@@ -110,6 +111,7 @@ struct Planner::Impl {
   MachineEvents events;
   MoveLimits previous_limits;
   bool previous_flows = false; // the last chained move flows into the next one
+  std::size_t off_path = 0;    // commands since the last chained move
   PathMode previous_mode = PathMode::ExactPath;
   double previous_tolerance = 0;
   // Step 3's running state.
@@ -140,6 +142,8 @@ void Planner::Impl::add(const CanonCommand& c) {
   w.timed.line = c.line;
   w.timed.kind = c.kind;
   limit_and_chain(w);
+  off_path = w.plan.timing == MoveTiming::Chained ? 0 : off_path + 1;
+  if (options.max_commands_off_path && off_path == options.max_commands_off_path) come_to_rest();
   if (!options.look_ahead_whole_program && items.size() - front.final_items >= next_look_ahead) {
     const std::size_t before = front.final_items;
     look_ahead(false);
@@ -201,6 +205,23 @@ void Planner::Impl::limit_and_chain(WaitingCommand& w) {
   previous_tolerance = c.state.path_tolerance;
 }
 
+// A long run of commands off the path: the last move ends at rest, as when a code stops motion,
+// and what waited for the move after it is timed. What the look-ahead holds then ends at rest
+// too, so it is planned to its end.
+void Planner::Impl::come_to_rest() {
+  previous_flows = false;
+  if (linuxcnc_path) {
+    linuxcnc_path->stop();
+    if (task_waiting > 0 && last_move != kNone) rest_after.emplace_back(last_move, task_waiting);
+    task_waiting = 0;
+    last_move = kNone; // its task time is known: timed with it
+  }
+  if (!options.look_ahead_whole_program) {
+    look_ahead(true);
+    next_look_ahead = batch;
+  }
+}
+
 void Planner::Impl::look_ahead(bool at_end) {
   work.items_planned += plan_speeds(items, front, at_end);
 }
@@ -216,6 +237,7 @@ bool Planner::Impl::ready(const WaitingCommand& w) const {
 
 void Planner::Impl::send_ready() {
   work.most_items = std::max(work.most_items, items.size() - items.first());
+  work.most_waiting = std::max(work.most_waiting, waiting.size());
   for (;;) {
     ++work.commands_examined;
     if (waiting.empty() || !ready(waiting.front())) break;

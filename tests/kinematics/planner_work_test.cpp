@@ -1,6 +1,7 @@
 // The planner's work stays linear in the program: counted (Planner::work()), not timed, so that
 // a quadratic case fails the same on any machine. A run of zero-length moves behind a move that
-// waits for the next one (a loop around "G1 X5" at X5) made every command scan the whole run.
+// waits for the next one (a loop around "G1 X5" at X5) made every command scan the whole run,
+// and held the whole run in memory.
 #include <doctest/doctest.h>
 #include <string>
 
@@ -90,8 +91,10 @@ TEST_CASE("zero-length moves in a loop: the planner's work grows linearly with t
       // thousands, growing ten times with the loop).
       CHECK(per_command(large) < 8);
       CHECK(per_command(large) < 1.2 * per_command(small) + 1);
-      // The moves of the loop take no room in the look-ahead.
+      // The moves of the loop take no room in the look-ahead, and past
+      // PlanOptions::max_commands_off_path of them none in memory either.
       CHECK(large.work.most_items <= 4);
+      CHECK(large.work.most_waiting <= PlanOptions{}.max_commands_off_path + 2);
       // Timed as the whole program planned at once times them.
       PlanOptions whole;
       whole.look_ahead_whole_program = true;
@@ -123,5 +126,44 @@ TEST_CASE("a long stretch with no point of known speed is planned in linear work
     CHECK(double(large.work.items_planned) / double(large.commands) < 16);
     CHECK(double(large.work.commands_examined) / double(large.commands) < 8);
     CHECK(double(large.work.items_planned) / double(small.work.items_planned) < 14);
+  }
+}
+
+TEST_CASE("a long run off the path brings the path to rest, the same streamed as planned whole") {
+  // With the run cut at 50 commands: moves before and after runs of 10, 50 and 300 zero-length
+  // moves and feed changes, timed bit for bit as the whole program planned at once times them.
+  const std::string text = "G21 G90 G64 P0.01\nG1 X0 Y0 F3000\n"
+                           "o1 repeat [3]\n"
+                           "G1 X10\no2 repeat [10]\nG1 X10\no2 endrepeat\nG1 X20 Y1\n"
+                           "o3 repeat [50]\nG1 X20 Y1\no3 endrepeat\nG2 X30 Y1 I5\n"
+                           "o4 repeat [300]\nF[3000+#5]\nG0 X30 Y1\no4 endrepeat\nG1 X0 Y0\n"
+                           "o1 endrepeat\nM2\n";
+  InterpreterOptions io;
+  const Toolpath path = interpret(make_source("runs.ngc", text), io);
+  REQUIRE(path.result.completed);
+  for (const MachineProfile& machine : machines()) {
+    CAPTURE(machine.kinematics.junction_rule);
+    PlanOptions whole;
+    whole.look_ahead_whole_program = true;
+    whole.max_commands_off_path = 50;
+    PlanOptions streamed = whole;
+    streamed.look_ahead_whole_program = false;
+    streamed.look_ahead_batch = 3;
+    const Timeline a = plan(path.commands, machine, whole);
+    const Timeline b = plan(path.commands, machine, streamed);
+    REQUIRE(a.commands.size() == b.commands.size());
+    CHECK(a.total_s == b.total_s);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < a.commands.size(); ++i)
+      if (a.commands[i].start_s != b.commands[i].start_s ||
+          a.commands[i].duration_s != b.commands[i].duration_s ||
+          a.commands[i].entry_speed_mm_s != b.commands[i].entry_speed_mm_s ||
+          a.commands[i].exit_speed_mm_s != b.commands[i].exit_speed_mm_s ||
+          a.commands[i].samples.size() != b.commands[i].samples.size())
+        ++differing;
+    CHECK(differing == 0);
+    // The cut brings the path to rest where it flowed on: uncut, the program takes less.
+    const Timeline c = plan(path.commands, machine, PlanOptions{});
+    CHECK(c.total_s < a.total_s);
   }
 }

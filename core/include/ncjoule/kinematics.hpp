@@ -53,6 +53,11 @@ struct PlanOptions {
   // sends commands out sooner for more planning work; the result is the same. The fuzz target
   // sets it small so that a short program reaches the window's every path.
   std::size_t look_ahead_batch = 64;
+  // Commands in a row that are no part of the path (zero-length moves, feed changes) after which
+  // the path comes to rest, as a control whose read-ahead runs dry stops. Until then they wait,
+  // in memory, for the move after them, which decides the speed of the move before them; a loop
+  // of zero-length moves held them all (400 bytes each). Real programs never come near.
+  std::size_t max_commands_off_path = 10'000;
 };
 
 // The planner as a stream, for programs of any length: commands go in one at a time and come
@@ -80,6 +85,7 @@ public:
     std::size_t items_planned = 0;     // look-ahead items visited by the passes over the window
     std::size_t commands_examined = 0; // waiting commands looked at to time or release them
     std::size_t most_items = 0;        // look-ahead items held at once
+    std::size_t most_waiting = 0;      // commands held at once
   };
   Work work() const;
 

@@ -42,9 +42,10 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "heidenhain, reprap); default: the machine profile's (auto: detected from the "
                  "file)");
   cmd.add_option("--stock", s.stock,
-                 "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an STL file; default: the "
-                 "job file's, else PROGRAM.stock, else the user config's, else the bounding box "
-                 "of the cutting moves");
+                 "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an STL file, in the program's "
+                 "units unless a value says its own (box:0,0,-1in,4in,3in,0); default: the job "
+                 "file's, else PROGRAM.stock, else the user config's, else the bounding box of "
+                 "the cutting moves");
   cmd.add_option("--job", s.job,
                  "Job file (TOML): stock = \"box:...\" or stock_stl = \"part.stl\", and "
                  "[[tool]] entries; --stock and --tool override it; default: PROGRAM.ncjoule.toml "

@@ -273,8 +273,9 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
       interpret(source, again, [&mirrored](const CanonCommand& c) { mirrored.add(mirrored_z(c)); });
     }
     try {
+      removal_options.program_inch = e.inch;
       removal = std::make_unique<RemovalSimulator>(
-          options.stock ? *options.stock : StockSpec{},
+          options.stock ? options.stock->in_mm(e.inch) : StockSpec{},
           removal_options.mirror_z ? mirrored : scan.extent, used, removal_options);
     } catch (const std::exception& ex) {
       e.diagnostics.push_back({Severity::Error, source.path, 0, 0,

@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "ncjoule/estimate.hpp"
+#include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
 
 namespace ncjoule {
@@ -130,8 +131,20 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
 
   for (const auto& [key, value] : document)
     if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "tool" &&
-        key.str() != "material")
+        key.str() != "material" && key.str() != "units")
       reader.say(Severity::Warning, &value, std::string(key.str()), "unknown key, ignored");
+
+  // The unit of the stock's values written without one; none: the program's (G20/G21).
+  LengthUnit units = LengthUnit::Program;
+  if (const toml::node* u = document.get("units")) {
+    const std::string name = u->is_string() ? to_lower(*u->value<std::string>()) : "";
+    if (name == "mm")
+      units = LengthUnit::Mm;
+    else if (name == "in" || name == "inch")
+      units = LengthUnit::Inch;
+    else
+      reader.error(u, "units", "must be \"mm\" or \"in\"");
+  }
 
   const toml::node* stock = document.get("stock");
   const toml::node* stock_stl = document.get("stock_stl");
@@ -145,7 +158,7 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
       const TextOrigin origin{reader.path, int(stock->source().begin.line),
                               int(stock->source().begin.column) + 1};
       std::vector<Diagnostic> problems;
-      if (auto spec = parse_stock_spec(*stock->value<std::string>(), &problems, origin)) {
+      if (auto spec = parse_stock_spec(*stock->value<std::string>(), &problems, origin, units)) {
         if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = reader.resolve(spec->stl_path);
         job.stock = spec;
       } else {
@@ -161,6 +174,8 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
       StockSpec spec;
       spec.kind = StockSpec::Kind::Stl;
       spec.stl_path = reader.resolve(*stock_stl->value<std::string>());
+      spec.stl_units = units;
+      spec.origin = reader.path;
       job.stock = spec;
     }
   }

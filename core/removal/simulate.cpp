@@ -115,6 +115,11 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     const std::string text = "STL " + spec.stl_path + " (" +
                              std::to_string(mesh->triangles.size()) + " triangles, bounds " +
                              format_box(mesh->bounds()) + ")";
+    if (spec.stl_units == LengthUnit::Inch) // an STL has no unit: this one was said to be inches
+      for (Triangle& t : mesh->triangles)
+        for (auto& vertex : t.v)
+          for (double& c : vertex)
+            c *= 25.4;
     crossings_ = mesh->crossings_per_column();
     if (options.mirror_z) // crossings pair up along each column: the winding does not matter
       for (Triangle& t : mesh->triangles)
@@ -164,6 +169,11 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
              " m): check its units and coordinates; nothing is removed");
     return;
   }
+
+  if (spec.kind != StockSpec::Kind::Default)
+    if (const auto cuts = extent.box(tools_))
+      if (std::string why = stock_mismatch(bounds, *cuts, spec, options.program_inch); !why.empty())
+        diag(Severity::Warning, 0, std::move(why));
 
   // The grid: the one given, or the automatic one within the cell caps and the memory budget.
   const std::size_t budget =

@@ -61,6 +61,28 @@ diameter_mm = 8
   CHECK(job->tools.at(4).corner_radius_mm == 4);
 }
 
+TEST_CASE("job file: units of the stock's values without one") {
+  std::vector<Diagnostic> diagnostics;
+  const auto inch = parse_job_file("units = \"in\"\nstock = \"box:0,0,-1,4,3,0\"\n",
+                                   "part.ncjoule.toml", diagnostics);
+  REQUIRE(inch);
+  REQUIRE(inch->stock);
+  CHECK(inch->stock->in_mm(false).box.xmax == doctest::Approx(101.6)); // whatever the program's
+  const auto own = parse_job_file("units = \"in\"\nstock = \"box:0,0,-20mm,100mm,60mm,0\"\n",
+                                  "part.ncjoule.toml", diagnostics);
+  REQUIRE(own);
+  CHECK(own->stock->in_mm(true).box.xmax == doctest::Approx(100)); // a value's own unit wins
+  const auto none =
+      parse_job_file("stock = \"box:0,0,-1,4,3,0\"\n", "part.ncjoule.toml", diagnostics);
+  REQUIRE(none);
+  CHECK(none->stock->follows_program_units());
+  CHECK(diagnostics.empty());
+  CHECK_FALSE(parse_job_file("units = \"cm\"\n", "part.ncjoule.toml", diagnostics));
+  REQUIRE(diagnostics.size() == 1);
+  CHECK(diagnostics[0].line == 1);
+  CHECK(diagnostics[0].message.find("\"mm\" or \"in\"") != std::string::npos);
+}
+
 TEST_CASE("job file: an STL stock is found beside the job file") {
   std::vector<Diagnostic> diagnostics;
   const auto job = parse_job_file("stock_stl = \"parts/blank.stl\"\n", "jobs/a.toml", diagnostics);

@@ -262,3 +262,58 @@ TEST_CASE("a stock wider than any machine is refused before a grid is tried, nam
     CHECK(said);
   }
 }
+
+TEST_CASE("stock values may carry a unit; without one they follow the program's units") {
+  CHECK(parse_length("12.5")->first == 12.5);
+  CHECK(parse_length("12.5")->second == LengthUnit::Program);
+  CHECK(parse_length("-1in")->second == LengthUnit::Inch);
+  CHECK(parse_length("-1in")->first == -1);
+  CHECK(parse_length(" 2 inch ")->second == LengthUnit::Inch);
+  CHECK(parse_length("0.5\"")->second == LengthUnit::Inch);
+  CHECK(parse_length("25.4MM")->second == LengthUnit::Mm);
+  CHECK_FALSE(parse_length("in"));
+  CHECK_FALSE(parse_length("3cm"));
+
+  const auto unitless = parse_stock_spec("box:0,0,-1,4,3,0");
+  REQUIRE(unitless);
+  CHECK(unitless->follows_program_units());
+  CHECK(unitless->in_mm(true).box.xmax == doctest::Approx(101.6)); // an inch program's stock
+  CHECK(unitless->in_mm(false).box.xmax == 4);
+  const auto inches = parse_stock_spec("box:0,0,-1in,4in,3in,0");
+  REQUIRE(inches);
+  CHECK_FALSE(inches->follows_program_units()); // 0 has no unit, but 0 in any unit is 0
+  CHECK(inches->in_mm(false).box.zmin == doctest::Approx(-25.4));
+  // A box written in two units is checked in one: 1 in is above 20 mm.
+  CHECK(parse_stock_spec("box:0,0,-20mm,1in,1in,0"));
+  std::vector<Diagnostic> problems;
+  CHECK_FALSE(parse_stock_spec("box:0,0,-1in,20mm,30mm,-30mm", &problems)); // top below bottom
+  // A job file's units apply to values without one.
+  const auto job = parse_stock_spec("box:0,0,-1,4,3,0", nullptr, {}, LengthUnit::Inch);
+  REQUIRE(job);
+  CHECK_FALSE(job->follows_program_units());
+  CHECK(job->in_mm(false).box.ymax == doctest::Approx(76.2));
+}
+
+TEST_CASE("a stock 25.4 times too small or away from the cuts is said to be a unit mix-up") {
+  const Box3 cuts{0, 0, -10, 100, 60, 0};
+  // An inch program's stock typed in mm under the old rule, read in inches: 25.4 times too big.
+  const auto mm_typed = parse_stock_spec("box:0,0,-20,100,60,0");
+  REQUIRE(mm_typed);
+  const std::string big = stock_mismatch(mm_typed->in_mm(true).box, cuts, *mm_typed, true);
+  CHECK(big.find("25.4 times larger") != std::string::npos);
+  CHECK(big.find("inches, G20") != std::string::npos);
+  // Inches typed for a mm program: 25.4 times too small.
+  const auto inch_typed = parse_stock_spec("box:0,0,-0.8,4,2.4,0");
+  REQUIRE(inch_typed);
+  const std::string small = stock_mismatch(inch_typed->in_mm(false).box, cuts, *inch_typed, false);
+  CHECK(small.find("25 times smaller") != std::string::npos);
+  // The right stock, and one a little larger: nothing said.
+  CHECK(stock_mismatch(Box3{-5, -5, -20, 105, 65, 0}, cuts, *mm_typed, false).empty());
+  CHECK(stock_mismatch(Box3{0, 0, -10, 400, 240, 0}, cuts, *mm_typed, false).empty());
+  // Beside the cuts: a stock for another work offset, or its numbers in the wrong place.
+  const auto units = parse_stock_spec("box:0,0,-1in,4in,3in,0");
+  REQUIRE(units);
+  const std::string beside = stock_mismatch(Box3{200, 0, -10, 300, 60, 0}, cuts, *units, false);
+  CHECK(beside.find("does not overlap") != std::string::npos);
+  CHECK(beside.find("another work offset") != std::string::npos);
+}

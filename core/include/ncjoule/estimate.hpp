@@ -60,7 +60,8 @@ struct EstimateOptions {
 };
 
 // A job file (TOML) says what a program is cut from and with:
-//   stock = "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX"   (mm; or an .stl path)   or   stock_stl = "x.stl"
+//   stock = "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX"   (or an .stl path)   or   stock_stl = "x.stl"
+//   units = "mm" | "in"   (of the stock's values written without a unit; default: the program's)
 //   material = "aluminium-alloy"                  (the workpiece: material.hpp)
 //   [[tool]]  number = 1, type = "flat" | "ball" | "bullnose" | "drill" | "chamfer",
 //             diameter_mm, corner_radius_mm, point_angle_deg, tip_diameter_mm,

@@ -11,6 +11,7 @@
 // Positions are tool-tip positions in program coordinates (mm), as MotionSample gives them.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -106,20 +107,46 @@ struct Box3 {
   bool empty() const { return !(xmax > xmin && ymax > ymin && zmax > zmin); }
 };
 
+// The unit a length is written in: its own ("-1in", "25mm"), or none, and then the program's
+// (G20/G21) once it is known. An inch program's stock typed in inches is what its programmer
+// means; one typed without a unit is read so.
+enum class LengthUnit : std::uint8_t { Program, Mm, Inch };
+
 // What the user asked for. Default: the bounding box of the cutting moves (see
 // default_stock_box).
 struct StockSpec {
   enum class Kind { Default, Box, Stl } kind = Kind::Default;
-  Box3 box;             // Kind::Box, mm
-  std::string stl_path; // Kind::Stl, mm
+  Box3 box; // Kind::Box, as written, in box_units (mm once in_mm() has run)
+  std::array<LengthUnit, 6> box_units{}; // of xmin, ymin, zmin, xmax, ymax, zmax
+  std::string stl_path;                  // Kind::Stl
+  LengthUnit stl_units = LengthUnit::Program;
+  // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", ...
+  std::string origin;
+  // The stock in millimetres for a program in inches (`program_inch`) or millimetres: values
+  // written without a unit take the program's.
+  StockSpec in_mm(bool program_inch) const;
+  // Whether any value was written without a unit (and so follows the program's).
+  bool follows_program_units() const;
 };
 
-// "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX" (mm), a path ending in .stl (any case), or "" / "auto"
-// for the default. Returns std::nullopt, with an error in `diagnostics` placed within `origin`,
-// when the text is not understood.
+// "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX", a path ending in .stl (any case), or "" / "auto" for the
+// default. A box value may carry a unit ("box:0,0,-1in,4in,3in,0"; mm, in, inch, or "): without
+// one it is in `units` (LengthUnit::Program: the program's units). An STL is in `units`. Returns
+// std::nullopt, with an error in `diagnostics` placed within `origin`, when the text is not
+// understood.
 std::optional<StockSpec> parse_stock_spec(std::string_view text,
                                           std::vector<Diagnostic>* diagnostics = nullptr,
-                                          const TextOrigin& origin = {});
+                                          const TextOrigin& origin = {},
+                                          LengthUnit units = LengthUnit::Program);
+// Why a given stock (`stock_mm`, as `spec` was written) looks like one in the wrong units or
+// place against the box of the program's cutting moves: it does not overlap them, or is more
+// than 20 times larger or smaller (an inch stock read as mm is 25.4 times too small). Empty when
+// it fits. The sentence names the unit mix-up it likely is.
+std::string stock_mismatch(const Box3& stock_mm, const Box3& cuts_mm, const StockSpec& spec,
+                           bool program_inch);
+// A length with an optional unit ("12.5", "-1in", "3mm", "0.5\""): its number and unit; nullopt
+// when it is not one.
+std::optional<std::pair<double, LengthUnit>> parse_length(std::string_view text);
 
 // The default stock: the bounding box of the cutting moves (Feed, Arc), extended in X and Y by
 // the radius of the tool making each move. Moves whose tool is unknown are left out.
@@ -320,6 +347,7 @@ struct RemovalOptions {
   // and of a given stock (box or STL, in program coordinates). The extent that sizes the default
   // stock must then be of the mirrored commands (mirrored_z).
   bool mirror_z = false;
+  bool program_inch = false; // the program's units (G20): for what a stock's units are said to be
 };
 inline constexpr std::size_t kDefaultRemovalMemoryBudget = std::size_t(1) << 30; // 1 GiB
 

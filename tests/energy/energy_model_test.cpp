@@ -92,7 +92,7 @@ TEST_CASE("CO2 and price overrides replace the profile's values") {
   CHECK(r.currency == "USD");
 }
 
-TEST_CASE("zero MRR gives the air-cut power; the Zhou air cut is c1 + c2*n") {
+TEST_CASE("zero MRR gives the air-cut power: the Zhou air cut is c1 + c2*n") {
   ProgramBuilder b;
   b.spindle(1300);
   b.feed({100, 0, 0}, 3.0); // no material

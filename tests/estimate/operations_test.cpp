@@ -103,7 +103,7 @@ TEST_CASE("FreeCAD's begin/finish operation comments: the name, not the note") {
   CHECK(names(e) == std::vector<std::string>{"Facing", "Pocket"});
 }
 
-TEST_CASE("a name below the tool change; the header's tool list is never a name") {
+TEST_CASE("a name below the tool change: the header's tool list is never a name") {
   const Estimate e = run("(T1 D=20. CR=0. - ZMIN=-1. - FLAT END MILL)\n"
                          "G90 G94 G17 G21\n"
                          "T1 M6\n"

@@ -111,7 +111,7 @@ TEST_CASE("canned cycles in inches and in the XZ plane") {
   CHECK(moves(zx) == expected);
 }
 
-TEST_CASE("canned cycle errors: R below Z, peck without Q; a missing R only warns") {
+TEST_CASE("canned cycle errors: R below Z, peck without Q: a missing R only warns") {
   // A post that drops R (FreeCAD's comparams): the cycle starts where the tool is.
   const Toolpath nor = run("G21 G0 Z5\nG81 X1 Z-1 F100\nM2\n");
   CHECK(errors(nor) == 0);

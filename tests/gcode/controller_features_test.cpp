@@ -40,7 +40,7 @@ TEST_CASE("Haas G187 and G103, Fanuc G05.1 are planner hints with their values")
   CHECK(fh[1].text == "G5.1 Q0");
 }
 
-TEST_CASE("Fanuc G84 taps: feed in, spindle reverses, feed out; G74 is left-handed; M29 rigid") {
+TEST_CASE("Fanuc G84 taps: feed in, spindle reverses, feed out: G74 is left-handed: M29 rigid") {
   // Fanuc Operator's Manual, "Tapping cycle (G84)" / "Rigid tapping": the tool feeds to Z at F,
   // the spindle reverses at the bottom after the dwell P (ms), and the tool feeds back to R;
   // G98 then rapids to the initial level.
@@ -95,7 +95,7 @@ TEST_CASE("Fanuc M98 P/L forms and O-number headers, M99 returns") {
   CHECK(detect_dialect(make_source("x.nc", program)).name == "fanuc");
 }
 
-TEST_CASE("G65 macro call passes its arguments; Haas M97 calls a local N-number subprogram") {
+TEST_CASE("G65 macro call passes its arguments: Haas M97 calls a local N-number subprogram") {
   // Fanuc Custom Macro B, "G65 simple call": A->#1, B->#2, X->#24, Z->#26; the macro reads them.
   const Toolpath g = run("G21 G90 G0 X0\nG65 P9001 A2 X7 Z-3\nM30\nO9001\nG1 X#24 Z#26 F[#1*100]\n"
                          "M99\n",

@@ -23,7 +23,7 @@ TEST_CASE("unknown G and M codes warn with file, line and column, the motion sti
   CHECK(p.result.completed);
 }
 
-TEST_CASE("bad G numbers are errors and skip the block; stray words and characters only warn") {
+TEST_CASE("bad G numbers are errors and skip the block: stray words and characters only warn") {
   const Toolpath p = run("G21\nG0 X1 Y\nG0 X2 (open comment\nG0 X3 &\nG1.55 X4\nG0 X5\nM2\n");
   const auto e = with_severity(p, Severity::Error);
   REQUIRE(e.size() == 1);

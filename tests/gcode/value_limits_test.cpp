@@ -82,7 +82,7 @@ TEST_CASE("dwells are bounded in seconds, whatever unit P is in") {
              "dwell out of range");
 }
 
-TEST_CASE("a position that incremental moves push out of range is refused; the machine stays") {
+TEST_CASE("a position that incremental moves push out of range is refused: the machine stays") {
   const Toolpath p = run("G21 G91\nG0 X60000\nG0 X60000\nG0 X-10000\nM2\n");
   const Diagnostic e = only_error(p, "the move goes out of range");
   CHECK(e.line == 3);

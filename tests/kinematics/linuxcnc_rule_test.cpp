@@ -114,7 +114,7 @@ TEST_CASE("the path stops between G0 and G1, at reversals, and at codes task wai
   }
 }
 
-TEST_CASE("a spindle start stops the path; the first feed after it starts from rest") {
+TEST_CASE("a spindle start stops the path: the first feed after it starts from rest") {
   const MachineProfile m = linuxcnc_machine();
   std::vector<CanonCommand> program{
       feed(at(-10, 0), at(0, 0), 600), event(CanonKind::SpindleClockwise),

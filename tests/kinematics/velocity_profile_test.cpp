@@ -72,7 +72,7 @@ TEST_CASE("reachable speed is the inverse of the ramp distance") {
       }
 }
 
-TEST_CASE("with jerk the reachable speed is not monotone in the start speed; its lowest is found") {
+TEST_CASE("with jerk the reachable speed is not monotone in the start speed: its lowest is found") {
   // 0.5 mm at 10,000 mm/s^3: from rest a ramp gains 13.6 mm/s, from 7.07 mm/s only 6.1.
   CHECK(reachable_speed(0, 0.5, 1000, 10000) > reachable_speed(7.066, 0.5, 1000, 10000) + 0.3);
   for (const double jerk : {0.0, 2000.0, 10000.0, 1e6})

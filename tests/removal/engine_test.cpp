@@ -105,7 +105,7 @@ TEST_CASE("results are identical run to run and whatever the number of threads")
   }
 }
 
-TEST_CASE("air moves remove nothing; a rapid through the stock is a collision") {
+TEST_CASE("air moves remove nothing: a rapid through the stock is a collision") {
   const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
   ProgramBuilder p;
   p.tool(1).feed_rate(300).rapid(-10, 0, 2).feed(30, 0, 0.5); // feeding above the stock

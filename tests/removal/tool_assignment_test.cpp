@@ -79,7 +79,7 @@ TEST_CASE("a program that selects no tool cuts with the one tool described, with
   CHECK(mentions(a.diagnostics, Severity::Note, "selects no tool"));
 }
 
-TEST_CASE("nothing described: the profile's default tool, with a warning; else no removal") {
+TEST_CASE("nothing described: the profile's default tool, with a warning: else no removal") {
   ProgramBuilder p;
   p.feed_rate(300).rapid(0, 0, 5).feed(0, 0, -1);
   const Tool fallback = flat_end_mill(0, 6);

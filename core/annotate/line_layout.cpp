@@ -37,7 +37,9 @@ std::optional<std::size_t> insertion_point(std::string_view line, const Dialect&
   std::size_t end;
   std::size_t floor;
   if (style.open == ";") {
-    // Everything after a ';' is comment: past all the code, before the user's ';' comment.
+    // Everything after a ';' is comment: past all the code, before the user's ';' comment;
+    // not in a "( )" comment that runs to the line's end ("(MSG, note": it would say it).
+    if (span.unclosed_comment) return std::nullopt;
     end = span.semicolon == std::string_view::npos ? line.size() : span.semicolon;
     floor = span.code_end;
   } else {

@@ -20,7 +20,8 @@ namespace ncjoule::annotation {
 //   end of the line (after any "( )" comment and a Heidenhain block's '*'), never before the end
 //   of the code.
 // nullopt when the line has no code before that point, or ends inside an argument list or a
-// string (MSG("a;b): the comment then goes on a line of its own.
+// string (MSG("a;b), or, for ';' comments, inside a "( )" comment that does not close: the
+// comment then goes on a line of its own.
 std::optional<std::size_t> insertion_point(std::string_view line, const Dialect& dialect,
                                            const CommentStyle& style);
 

@@ -130,9 +130,10 @@ CodeSpan code_span(std::string_view line, const Dialect& dialect) {
   CodeSpan span;
   scan_line(
       line, dialect,
-      [&](std::size_t, std::size_t, std::size_t open) {
+      [&](std::size_t, std::size_t end, std::size_t open) {
         if (span.stop == std::string_view::npos) span.stop = open;
         if (line[open] == ';') span.semicolon = open;
+        if (line[open] == '(' && end == line.size()) span.unclosed_comment = true;
       },
       [&](std::size_t begin, std::size_t end, bool closed) {
         if (span.code_begin == std::string_view::npos) span.code_begin = begin;

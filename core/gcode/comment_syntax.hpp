@@ -29,6 +29,9 @@ struct CodeSpan {
   // The line ends inside an argument list or a string (MSG("a;b): nothing written at its end
   // would be outside them.
   bool unclosed = false;
+  // The line ends inside a "( )" comment that does not close ("(MSG, note"): what is written at
+  // its end is part of it.
+  bool unclosed_comment = false;
 };
 CodeSpan code_span(std::string_view line, const Dialect& dialect);
 

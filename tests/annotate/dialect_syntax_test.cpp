@@ -101,6 +101,19 @@ TEST_CASE("a line ending inside a string or an argument list gets its comment on
   }
 }
 
+TEST_CASE("';' annotations never go at the end of a '( )' comment that does not close") {
+  // Found by fuzzing: "G0 X(msg,note" took the comment into its message.
+  for (const char* name : {"siemens", "reprap"}) { // Heidenhain reads '(' as code
+    CAPTURE(name);
+    const Dialect dialect = *find_dialect(name);
+    const std::string original = "G0 X0 Y0 Z5\nG0 X1 (msg,note Y2\nG1 X5 F100\nM30\n";
+    const std::string once = annotated(original, dialect);
+    CHECK(strip(once) == original);
+    CHECK(once.find("\nG0 X1 (msg,note Y2\n") != std::string::npos);
+    CHECK(canon_of(once, dialect, original) == canon_of(original, dialect, original));
+  }
+}
+
 TEST_CASE("Marlin and RepRapFirmware: ';' annotations, no parentheses Marlin would read as code") {
   const Dialect reprap = *find_dialect("reprap");
   const std::string original = "G21\nG90\nG0 X0 Y0 Z5\nG1 X20 F600 ; perimeter\nG4 P500\nM84\n";

@@ -115,9 +115,9 @@ std::string stock_mismatch(const Box3& stock, const Box3& cuts, const StockSpec&
                            bool program_inch) {
   const double stock_size = std::max(stock.xmax - stock.xmin, stock.ymax - stock.ymin);
   const double cut_size = std::max(cuts.xmax - cuts.xmin, cuts.ymax - cuts.ymin);
+  // Seen from above: a program that cuts above its stock only (air) is another matter.
   const bool overlaps = stock.xmin < cuts.xmax && cuts.xmin < stock.xmax &&
-                        stock.ymin < cuts.ymax && cuts.ymin < stock.ymax &&
-                        stock.zmin <= cuts.zmax && cuts.zmin <= stock.zmax;
+                        stock.ymin < cuts.ymax && cuts.ymin < stock.ymax;
   constexpr double kFactor = 20;
   const double ratio = cut_size > 0 ? stock_size / cut_size : 1;
   if (overlaps && ratio <= kFactor && ratio >= 1 / kFactor) return {};
@@ -130,10 +130,10 @@ std::string stock_mismatch(const Box3& stock, const Box3& cuts, const StockSpec&
                   cut_size);
   else
     std::snprintf(what, sizeof what,
-                  "the stock (X%.1f..%.1f Y%.1f..%.1f Z%.1f..%.1f mm) does not overlap the "
-                  "program's cuts (X%.1f..%.1f Y%.1f..%.1f Z%.1f..%.1f mm)",
-                  stock.xmin, stock.xmax, stock.ymin, stock.ymax, stock.zmin, stock.zmax, cuts.xmin,
-                  cuts.xmax, cuts.ymin, cuts.ymax, cuts.zmin, cuts.zmax);
+                  "the stock (X%.1f..%.1f Y%.1f..%.1f mm) is beside the program's cuts "
+                  "(X%.1f..%.1f Y%.1f..%.1f mm), not under them",
+                  stock.xmin, stock.xmax, stock.ymin, stock.ymax, cuts.xmin, cuts.xmax, cuts.ymin,
+                  cuts.ymax);
   std::string out = what;
   if (spec.follows_program_units())
     out += std::string(": a mix-up of units? Values written without a unit are read in the "
@@ -145,28 +145,57 @@ std::string stock_mismatch(const Box3& stock, const Box3& cuts, const StockSpec&
   return out;
 }
 
+void StockExtent::Extent::include(const Pose& p) {
+  xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+  ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+  zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
+}
+
+void StockExtent::Extent::include(const Extent& e) {
+  xmin = std::min(xmin, e.xmin), xmax = std::max(xmax, e.xmax);
+  ymin = std::min(ymin, e.ymin), ymax = std::max(ymax, e.ymax);
+  zmin = std::min(zmin, e.zmin), zmax = std::max(zmax, e.zmax);
+}
+
 void StockExtent::add(const CanonCommand& cmd) {
   if (!(cmd.kind == CanonKind::Feed || cmd.kind == CanonKind::Arc)) return;
   // A level move: travels in XY and starts and ends at one Z (lines, XY arcs).
   constexpr double kSameZMm = 1e-9;
   PerTool& t = tools_[cmd.state.tool];
-  auto include = [&](const Pose& p) {
-    t.xmin = std::min(t.xmin, p.x), t.xmax = std::max(t.xmax, p.x);
-    t.ymin = std::min(t.ymin, p.y), t.ymax = std::max(t.ymax, p.y);
-    t.zmin = std::min(t.zmin, p.z);
-  };
-  include(cmd.start);
-  include(cmd.end);
+  const bool across_xy = travels_in_xy(cmd);
+  const bool level = across_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm;
+  constexpr double kLevelMm = 1e-6;
+  Extent* into = &t.other;
+  if (level) {
+    const bool plunged = !std::isnan(t.first_plunge_start);
+    // After the first plunge, a level move at or above its start crosses a clearance plane.
+    if (plunged && cmd.start.z >= t.first_plunge_start - kLevelMm) {
+      ++t.above_plunge;
+      t.length += move_length(cmd);
+      return;
+    }
+    const double feed = cmd.state.feed_mode == FeedMode::UnitsPerMinute ? cmd.state.feed : 0.0;
+    auto it = std::find_if(t.levels.begin(), t.levels.end(),
+                           [&](const Level& l) { return l.feed == feed; });
+    if (it == t.levels.end()) {
+      // A program of many feeds: those past kMaxFeeds share the last bucket.
+      if (t.levels.size() < kMaxFeeds) t.levels.push_back(Level{feed});
+      it = t.levels.end() - 1;
+    }
+    into = plunged ? &it->after : &it->before;
+    ++(plunged ? it->moves_after : it->moves_before);
+  } else if (cmd.end.z < cmd.start.z && std::isnan(t.first_plunge_start)) {
+    t.first_plunge_start = cmd.start.z;
+  }
+  into->include(cmd.start);
+  into->include(cmd.end);
   // An arc's sides bulge past its end points: walk along it.
   if (cmd.kind == CanonKind::Arc)
     for (int k = 1; k < 64; ++k)
-      include(point_on_move(cmd, k / 64.0));
+      into->include(point_on_move(cmd, k / 64.0));
   t.top_start = std::max(t.top_start, cmd.start.z);
   t.length += move_length(cmd);
-  const bool across_xy = travels_in_xy(cmd);
-  if (across_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm)
-    t.top_level = std::max(t.top_level, cmd.start.z);
-  if (across_xy) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
+  if (across_xy && !level) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
   if (levels_.size() < kMaxLevels) {
     levels_.push_back(cmd.start.z);
     levels_.push_back(cmd.end.z);
@@ -177,10 +206,47 @@ void StockExtent::add(const CanonCommand& cmd) {
   }
 }
 
+StockExtent::Extent StockExtent::cutting_levels_of(const PerTool& t, std::size_t& positioning) {
+  positioning += t.above_plunge;
+  Extent out;
+  if (t.levels.empty()) return out;
+  // The feed the tool cuts its deepest level at: that level surely cuts.
+  double deepest = std::numeric_limits<double>::infinity(), cutting_feed = 0;
+  for (const Level& l : t.levels) {
+    const double z = std::min(l.before.zmin, l.after.zmin);
+    if (z < deepest - 1e-9)
+      deepest = z, cutting_feed = l.feed;
+    else if (std::abs(z - deepest) <= 1e-9)
+      cutting_feed = std::max(cutting_feed, l.feed);
+  }
+  constexpr double kHighFeedFactor = 2.5;
+  constexpr double kLevelMm = 1e-6;
+  for (const Level& l : t.levels) {
+    if (cutting_feed > 0 && l.feed > kHighFeedFactor * cutting_feed) {
+      positioning += l.moves_before + l.moves_after;
+      continue;
+    }
+    out.include(l.after);
+    // Before the first plunge: moves wholly at or above its start crossed a clearance plane.
+    if (!std::isnan(t.first_plunge_start) && l.before.zmin >= t.first_plunge_start - kLevelMm)
+      positioning += l.moves_before;
+    else
+      out.include(l.before);
+  }
+  return out;
+}
+
+std::size_t StockExtent::positioning_moves() const {
+  std::size_t positioning = 0;
+  for (const auto& [number, t] : tools_)
+    cutting_levels_of(t, positioning);
+  return positioning;
+}
+
 std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
   constexpr double inf = std::numeric_limits<double>::infinity();
   Box3 b{inf, inf, inf, -inf, -inf, -inf};
-  double top_level = -inf;  // highest Z of a level move
+  double top_level = -inf;  // highest Z of a level move that cuts
   double top_start = -inf;  // highest Z a cutting move starts from (drilling-only programs)
   double top_travel = -inf; // highest Z of a cutting move that travels in XY (ramps, helices)
   bool any = false;
@@ -188,11 +254,15 @@ std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
     const auto tool = tools.find(number);
     if (tool == tools.end()) continue; // moves of an unknown tool are left out
     const double r = tool->second.radius();
+    std::size_t positioning = 0;
+    Extent cuts = cutting_levels_of(t, positioning);
+    top_level = std::max(top_level, cuts.zmax);
+    cuts.include(t.other);
+    if (!(cuts.xmax >= cuts.xmin)) continue; // only positioning
     any = true;
-    b.xmin = std::min(b.xmin, t.xmin - r), b.xmax = std::max(b.xmax, t.xmax + r);
-    b.ymin = std::min(b.ymin, t.ymin - r), b.ymax = std::max(b.ymax, t.ymax + r);
-    b.zmin = std::min(b.zmin, t.zmin);
-    top_level = std::max(top_level, t.top_level);
+    b.xmin = std::min(b.xmin, cuts.xmin - r), b.xmax = std::max(b.xmax, cuts.xmax + r);
+    b.ymin = std::min(b.ymin, cuts.ymin - r), b.ymax = std::max(b.ymax, cuts.ymax + r);
+    b.zmin = std::min(b.zmin, cuts.zmin);
     top_start = std::max(top_start, t.top_start);
     top_travel = std::max(top_travel, t.top_travel);
   }

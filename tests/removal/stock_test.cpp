@@ -53,7 +53,8 @@ TEST_CASE("a stock written in a file is reported at the line and column of the b
   CHECK(problems[0].line == 3);
   CHECK(problems[0].column == 10 + 14); // the 'x'
   CHECK(format_diagnostic(problems[0]) ==
-        "config.toml:3:24: error: stock box value 'x' is not a number");
+        "config.toml:3:24: error: stock box value 'x' is not a number (with an "
+        "optional unit: mm, in)");
   // From the command line: named by the option, no line.
   problems.clear();
   CHECK_FALSE(parse_stock_spec("cube", &problems, {"--stock 'cube'"}));
@@ -191,6 +192,51 @@ TEST_CASE("default stock: feed plunges from a clearance plane do not raise its t
   CHECK(r.commands[2].removed_mm3 == 0); // the first slot runs along the top
 }
 
+TEST_CASE("default stock: positioning at a high feed does not raise its top or widen it") {
+  // Fusion's "high feed" between passes: G1 F5000 at the retract plane Z5 and out to X200,
+  // where the tool cuts at F480. Taken as cuts, the stock's top would be Z5 and every pass a
+  // 5 mm deep slot, and the stock would reach X200.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(5000).rapid(0, 0, 15).feed(0, 0, 5).feed(200, 0, 5).feed(0, 10, 5);
+  p.feed_rate(480).feed(0, 10, -1).feed(40, 10, -1).feed(40, 20, -2).feed(0, 20, -2);
+  p.feed_rate(5000).feed(0, 20, 5).feed(200, 40, 5);
+  StockExtent extent;
+  for (const CanonCommand& c : p.commands())
+    extent.add(c);
+  const auto box = extent.box(tools);
+  REQUIRE(box);
+  CHECK(box->zmax == -1); // the highest level the tool cuts at
+  CHECK(box->zmin == -2);
+  CHECK(box->xmax == doctest::Approx(43)); // not X200 + 3
+  CHECK(box->ymax == doctest::Approx(23));
+  CHECK(extent.positioning_moves() == 3);
+}
+
+TEST_CASE("default stock: level feed moves at the first plunge's height are positioning") {
+  // A post that writes no G0 (personal-use Fusion, MPCNC-style): the tool crosses at the
+  // clearance plane Z15 at the cutting feed, plunges from there, and cuts at Z-1.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(1000).feed(0, 0, 15).feed(100, 50, 15).feed(10, 10, 15);
+  p.feed(10, 10, -1).feed(50, 10, -1).feed(50, 30, -1).feed(50, 30, 15).feed(0, 0, 15);
+  StockExtent extent;
+  for (const CanonCommand& c : p.commands())
+    extent.add(c);
+  const auto box = extent.box(tools);
+  REQUIRE(box);
+  CHECK(box->zmax == -1);
+  CHECK(box->xmax == doctest::Approx(53));
+  CHECK(extent.positioning_moves() == 3);
+  // A program of level cuts at one feed with no plunge keeps them all (nothing to tell them by).
+  ProgramBuilder flat;
+  flat.tool(1).feed_rate(1000).rapid(0, 0, -1).feed(40, 0, -1).feed(40, 20, -1);
+  StockExtent flat_extent;
+  for (const CanonCommand& c : flat.commands())
+    flat_extent.add(c);
+  CHECK(flat_extent.positioning_moves() == 0);
+}
+
 TEST_CASE("a bad STL is a diagnostic naming the file and, in ASCII, the line") {
   std::vector<Diagnostic> problems;
   const std::string text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
@@ -263,7 +309,7 @@ TEST_CASE("a stock wider than any machine is refused before a grid is tried, nam
   }
 }
 
-TEST_CASE("stock values may carry a unit; without one they follow the program's units") {
+TEST_CASE("stock values may carry a unit: without one they follow the program's units") {
   CHECK(parse_length("12.5")->first == 12.5);
   CHECK(parse_length("12.5")->second == LengthUnit::Program);
   CHECK(parse_length("-1in")->second == LengthUnit::Inch);
@@ -314,6 +360,6 @@ TEST_CASE("a stock 25.4 times too small or away from the cuts is said to be a un
   const auto units = parse_stock_spec("box:0,0,-1in,4in,3in,0");
   REQUIRE(units);
   const std::string beside = stock_mismatch(Box3{200, 0, -10, 300, 60, 0}, cuts, *units, false);
-  CHECK(beside.find("does not overlap") != std::string::npos);
+  CHECK(beside.find("beside the program's cuts") != std::string::npos);
   CHECK(beside.find("another work offset") != std::string::npos);
 }

@@ -158,6 +158,11 @@ std::optional<std::pair<double, LengthUnit>> parse_length(std::string_view text)
 //    clearance plane, inflate the stock and make later rapids below that plane look like
 //    collisions. Only when the program has no such level move (a drilling-only program) is the
 //    top the highest Z a cutting move starts from.
+//  - Positioning written as feed moves is not cutting: a level move at a feed far above the
+//    cutting feed of the same tool (more than 2.5 times the feed it cuts its deepest level at:
+//    Fusion's "high feed" G1 F5000 between passes), or at or above the height the tool's first
+//    plunge starts from (a clearance plane crossed at feed, as posts without G0 write it),
+//    neither raises the top nor widens the box.
 // std::nullopt when the program has no cutting move; the box may have no height (every level
 // move at one Z), which the caller reports.
 std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
@@ -175,15 +180,37 @@ public:
   std::vector<double> cutting_levels() const;
   // Length of the cutting moves of tool `number` (mm).
   double cutting_length(int number) const;
+  // Feed moves box() took for positioning, not cutting (see default_stock_box), over all tools.
+  std::size_t positioning_moves() const;
 
 private:
-  struct PerTool {
+  struct Extent {
     double xmin = std::numeric_limits<double>::infinity(), ymin = xmin, zmin = xmin;
-    double xmax = -std::numeric_limits<double>::infinity(), ymax = xmax;
-    double top_level = xmax, top_start = xmax, top_travel = xmax;
+    double xmax = -std::numeric_limits<double>::infinity(), ymax = xmax, zmax = xmax;
+    void include(const Pose& p);
+    void include(const Extent& e);
+  };
+  // The level moves (across XY at one Z) of one tool at one feed rate, before its first plunge
+  // and after it (those at or above that plunge's start are left out as they come).
+  struct Level {
+    double feed = 0; // mm/min (G94), or 0 where the feed is not a rate per minute
+    Extent before, after;
+    std::size_t moves_before = 0, moves_after = 0;
+  };
+  struct PerTool {
+    Extent other; // the tool's feed moves that are not level: plunges, ramps, helices
+    double top_start = -std::numeric_limits<double>::infinity(); // of any cutting move
+    double top_travel = top_start; // highest Z of a non-level move that travels in XY
+    double first_plunge_start = std::numeric_limits<double>::quiet_NaN();
+    std::vector<Level> levels;    // by feed, at most kMaxFeeds (beyond: folded into the last)
+    std::size_t above_plunge = 0; // level moves after the first plunge at or above its start
     double length = 0;
   };
   static constexpr std::size_t kMaxLevels = 4096;
+  static constexpr std::size_t kMaxFeeds = 64;
+  // The tool's level moves that cut: not at a feed far above its cutting feed, not above its
+  // first plunge's start. Sets `positioning` to how many were left out.
+  static Extent cutting_levels_of(const PerTool& t, std::size_t& positioning);
   std::map<int, PerTool> tools_;
   std::vector<double> levels_;
 };

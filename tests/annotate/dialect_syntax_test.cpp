@@ -38,7 +38,7 @@ const char* const kSinumerik = "%_N_PART_MPF\n"
 
 } // namespace
 
-TEST_CASE("Sinumerik: ';' annotations after calls, expressions and strings, never inside") {
+TEST_CASE("Sinumerik: semicolon annotations after calls, expressions and strings, never inside") {
   const Dialect siemens = *find_dialect("siemens");
   const std::string original = kSinumerik;
   const std::string once = annotated(original, siemens, no_header());
@@ -56,7 +56,7 @@ TEST_CASE("Sinumerik: ';' annotations after calls, expressions and strings, neve
   CHECK(canon_of(once, siemens, original) == canon_of(original, siemens, original));
 }
 
-TEST_CASE("Sinumerik: the header is ';' comments after %_N_, ;$PATH and the title comment") {
+TEST_CASE("Sinumerik: the header is semicolon comments after %_N_, the $PATH line and the title comment") {
   const Dialect siemens = *find_dialect("siemens");
   const std::string original = kSinumerik;
   const std::string once = annotated(original, siemens);
@@ -73,7 +73,7 @@ TEST_CASE("Sinumerik: the header is ';' comments after %_N_, ;$PATH and the titl
   CHECK(canon_of(once, siemens, original) == canon_of(original, siemens, original));
 }
 
-TEST_CASE("a string's ';' and parentheses are no comment to the scanner annotate reads") {
+TEST_CASE("a string's semicolon and parentheses are no comment to the scanner annotate reads") {
   const Dialect siemens = *find_dialect("siemens");
   // ')' inside the string first: a count of parentheses alone would end the call there and take
   // ";c" for a comment inside the string.
@@ -101,7 +101,7 @@ TEST_CASE("a line ending inside a string or an argument list gets its comment on
   }
 }
 
-TEST_CASE("';' annotations never go at the end of a '( )' comment that does not close") {
+TEST_CASE("semicolon annotations never go at the end of a '( )' comment that does not close") {
   // Found by fuzzing: "G0 X(msg,note" took the comment into its message.
   for (const char* name : {"siemens", "reprap"}) { // Heidenhain reads '(' as code
     CAPTURE(name);
@@ -114,7 +114,7 @@ TEST_CASE("';' annotations never go at the end of a '( )' comment that does not 
   }
 }
 
-TEST_CASE("Marlin and RepRapFirmware: ';' annotations, no parentheses Marlin would read as code") {
+TEST_CASE("Marlin and RepRapFirmware: semicolon annotations, no parentheses Marlin would read as code") {
   const Dialect reprap = *find_dialect("reprap");
   const std::string original = "G21\nG90\nG0 X0 Y0 Z5\nG1 X20 F600 ; perimeter\nG4 P500\nM84\n";
   for (const AnnotateOptions& options : {AnnotateOptions{}, no_header()}) {
@@ -130,7 +130,7 @@ TEST_CASE("Marlin and RepRapFirmware: ';' annotations, no parentheses Marlin wou
   }
 }
 
-TEST_CASE("grbl: no annotated line longer than a sender streams; no room, a line of its own") {
+TEST_CASE("grbl: no annotated line longer than a sender streams, no room means a line of its own") {
   const Dialect grbl = *find_dialect("grbl");
   REQUIRE(grbl.max_line_length == 125);
   const std::string long_comment = "G1 X10 Y20 F300 (" + std::string(95, 'a') + ")";
@@ -176,7 +176,7 @@ TEST_CASE("a block's own comment line is removed with its line ending, CR LF or 
   }
 }
 
-TEST_CASE("Heidenhain ISO: ';' after the block's '*', and no comment lines between blocks") {
+TEST_CASE("Heidenhain ISO: semicolon after the block's '*', and no comment lines between blocks") {
   const Dialect tnc = *find_dialect("heidenhain");
   const std::string original = "%PART G71 *\nN10 G00 X+0 Y+0 Z+5 *\nN20 G01 X+10 F100 *\n"
                                "N99999999 %PART G71 *\n";

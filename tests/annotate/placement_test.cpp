@@ -53,7 +53,7 @@ TEST_CASE("the annotation goes before existing comments: MSG stays the last comm
   CHECK(after[3].substr(after[3].size() - 6) == " ;note");
 }
 
-TEST_CASE("with ';' comments the annotation goes at the end of the code, after ( ) comments") {
+TEST_CASE("with semicolon comments the annotation goes at the end of the code, after ( ) comments") {
   Dialect semicolon = *find_dialect("linuxcnc");
   semicolon.comment_open = ";";
   semicolon.comment_close = "";
@@ -96,7 +96,7 @@ TEST_CASE("the header goes after a leading % line and an O-number line, never be
   CHECK(annotation::is_program_number_line(":1234"));
 }
 
-TEST_CASE("the program's title comment after % and the O-number stays first; the header follows") {
+TEST_CASE("the program's title comment after % and the O-number stays first, the header follows") {
   const Dialect fanuc = *find_dialect("fanuc");
   // A title on a line of its own: controls and DNC lists show the first comment as the name.
   const auto titled = lines_of(annotated("%\nO1234\n(BRACKET REV B)\n(T1 D=6.)\nG21 G90\n"
@@ -202,7 +202,7 @@ TEST_CASE("a block's numbers are the estimate's, and CUM is the time when it end
   CHECK(field_value(after[2], "T") <= 6.0);
 }
 
-TEST_CASE("the header splits the time and has one line per operation; inch programs in inches") {
+TEST_CASE("the header splits the time and has one line per operation, inch programs in inches") {
   const std::string two_ops = "G21 G90\n(Facing)\nT1 M6\nS2000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F200\n"
                               "G1 X80\nG0 Z5\n(2D Pocket1)\nT2 M6\nS3000 M3\nG0 X20 Y20\n"
                               "G1 Z-2 F100\nG4 P2\nG0 Z10\nM2\n";

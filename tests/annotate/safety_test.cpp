@@ -85,7 +85,7 @@ TEST_CASE("inserted comments hold only safe characters, for every dialect") {
   }
 }
 
-TEST_CASE("Fanuc-family annotations are in upper case; others keep readable units") {
+TEST_CASE("Fanuc-family annotations are in upper case, others keep readable units") {
   const std::string original = "%\nO0001\nG21 G90\nG00 X10. Y5.\nG01 X20. F300.\nM30\n%\n";
   const std::string fanuc = annotated(original, *find_dialect("fanuc"));
   CHECK(fanuc.find("G00 X10. Y5. (NCJ T=") != std::string::npos);

@@ -10,9 +10,11 @@
 #include <unistd.h>
 
 #include "long_arc_check.hpp"
+#include "machine_moves.hpp"
 #include "ncjoule/log.hpp"
 #include "ncjoule/text_file.hpp"
 #include "result_fold.hpp"
+#include "setups.hpp"
 
 namespace ncjoule {
 namespace {
@@ -45,21 +47,40 @@ void add_diagnostics(Estimate& e, std::vector<Diagnostic> more, const std::strin
 
 // What the first pass learns.
 struct ProgramScan {
+  explicit ProgramScan(const SourceFile& source) : setups(source, *find_dialect("linuxcnc")) {}
   ToolUsage tools;
-  StockExtent extent;
+  estimate_detail::SetupScan setups;
+  std::vector<StockExtent> extents{1}; // of each setup's cutting moves
   std::size_t commands = 0;
   ToolCommentContext tool_comments; // units and tool changes the comments are read against
   ZDirectionScan z_direction;
   estimate_detail::LongArcCheck long_arcs;
   void add(const CanonCommand& c) {
+    setups.add(c, commands);
     ++commands;
     tools.add(c);
-    extent.add(c);
+    if (extents.size() <= setups.current()) extents.resize(setups.current() + 1);
+    extents[setups.current()].add(c);
     tool_comments.add(c);
     z_direction.add(c);
     long_arcs.add(c);
   }
+  std::vector<std::size_t> setup_firsts() const {
+    std::vector<std::size_t> firsts;
+    for (const auto& start : setups.starts())
+      firsts.push_back(start.command);
+    return firsts;
+  }
 };
+
+// The stock of setup `k`: the first setup's is the one given (--stock, the job file's), later
+// ones the job file's [[setup]] entries; a setup given none is the box of its own cuts.
+StockSpec setup_stock(const EstimateOptions& options, std::size_t k, bool inch) {
+  const std::optional<StockSpec>& given =
+      k == 0 ? options.stock
+             : (k - 1 < options.setup_stocks.size() ? options.setup_stocks[k - 1] : std::nullopt);
+  return given ? given->in_mm(inch) : StockSpec{};
+}
 
 // Whether removal reads the program's Z mirrored: as the profile says, else as the program's
 // rapids show (with a warning that says what was seen and how to settle it).
@@ -209,6 +230,13 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     interpreter.dialect = find_dialect(machine.dialect); // "auto" finds none: detected
   interpreter.fallback_dialect = find_dialect(machine.fallback_dialect);
   interpreter.tools = options.tool_table;
+  // Where the work sits: the profile's setup, with the job file's work offsets in place of its.
+  WorkSetup setup = machine.setup;
+  for (const auto& [index, origin] : options.work_offsets)
+    setup.work_offsets[index] = origin;
+  interpreter.work_offsets = setup.work_offsets;
+  interpreter.start_inch = setup.power_on_inch.value_or(false);
+  const bool offsets_given = !setup.work_offsets.empty();
 
   const std::size_t budget = options.removal.memory_budget_bytes
                                  ? options.removal.memory_budget_bytes
@@ -221,9 +249,17 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
 
   // 1. The first pass. Stage times go to the log (-v): the benchmarks read them.
   auto t = Clock::now();
-  ProgramScan scan;
-  InterpretResult run =
-      interpret(source, interpreter, [&scan](const CanonCommand& c) { scan.add(c); });
+  ProgramScan scan(source);
+  // Without work offsets, Z home is placed above the highest point seen so far; the second pass
+  // places it above the highest point of the whole program.
+  estimate_detail::MachineMoves first_view(setup, offsets_given, 0, source.path);
+  InterpretResult run = interpret(source, interpreter, [&](const CanonCommand& c) {
+    first_view.set_home_z(
+        estimate_detail::MachineMoves::home_z_for(first_view.highest_program_z(), setup));
+    scan.add(first_view.view(c));
+  });
+  const double home_z =
+      estimate_detail::MachineMoves::home_z_for(first_view.highest_program_z(), setup);
   e.dialect = run.dialect;
   e.dialect_origin = run.dialect_origin;
   e.dialect_reason = run.dialect_reason;
@@ -231,6 +267,17 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.commands = run.commands;
   e.program_end = run.program_end;
   add_diagnostics(e, std::move(run.diagnostics), source.path);
+  add_diagnostics(e, first_view.take_diagnostics(), source.path);
+  if (!run.units_given && run.word_blocks > 0)
+    add_diagnostics(e,
+                    {{Severity::Warning, source.path, 0, 0,
+                      std::string("the program sets neither G20 nor G21: it runs in the units "
+                                  "the control is set to at power-on, taken to be ") +
+                          (interpreter.start_inch ? "inches" : "mm") +
+                          (setup.power_on_inch ? " (power_on_units in the profile's [setup])"
+                                               : " (say which with power_on_units = \"inch\" or "
+                                                 "\"mm\" under [setup] in the profile)")}},
+                    source.path);
   check_holds_gcode(run, e);
   if (e.failed) return e;
   if (auto long_arcs = scan.long_arcs.verdict(source.path))
@@ -245,7 +292,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   e.inch = scan.tool_comments.inch;
   std::map<int, Tool> described = described_tools(source, scan.tool_comments, options, found);
   add_diagnostics(e, std::move(found), source.path);
-  std::unique_ptr<RemovalSimulator> removal;
+  std::vector<std::unique_ptr<RemovalSimulator>> removals; // one per setup
   if (options.simulate_removal) {
     ToolAssignment assignment = assign_tools(
         scan.tools, described, options.default_tool ? options.default_tool : machine.default_tool,
@@ -263,41 +310,61 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
         std::max(budget - estimated_program_memory(source.text.size(), source.lines.size()),
                  std::size_t(16) << 20);
     removal_options.mirror_z = reads_z_mirrored(machine, scan.z_direction, e);
+    removal_options.program_inch = e.inch;
     t = Clock::now();
-    // The default stock is sized from the moves as removal sees them.
-    StockExtent mirrored;
+    const estimate_detail::SetupIndex setup_index(scan.setup_firsts());
+    // The default stocks are sized from the moves as removal sees them.
+    std::vector<StockExtent> mirrored(scan.extents.size());
     if (removal_options.mirror_z) {
       InterpreterOptions again = interpreter;
       again.dialect = e.dialect;
       again.keep_diagnostics = false;
-      interpret(source, again, [&mirrored](const CanonCommand& c) { mirrored.add(mirrored_z(c)); });
+      estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
+      std::size_t index = 0;
+      interpret(source, again, [&](const CanonCommand& c) {
+        mirrored[setup_index.of(index++)].add(mirrored_z(view.view(c)));
+      });
     }
+    // Each setup's stock model shares the budget.
+    removal_options.memory_budget_bytes =
+        std::max(removal_options.memory_budget_bytes / scan.extents.size(), std::size_t(16) << 20);
     try {
-      removal_options.program_inch = e.inch;
-      removal = std::make_unique<RemovalSimulator>(
-          options.stock ? options.stock->in_mm(e.inch) : StockSpec{},
-          removal_options.mirror_z ? mirrored : scan.extent, used, removal_options);
+      for (std::size_t k = 0; k < scan.extents.size(); ++k) {
+        removals.push_back(std::make_unique<RemovalSimulator>(
+            setup_stock(options, k, e.inch),
+            removal_options.mirror_z ? mirrored[k] : scan.extents[k], used, removal_options));
+        e.positioning_moves += scan.extents[k].positioning_moves();
+      }
     } catch (const std::exception& ex) {
       e.diagnostics.push_back({Severity::Error, source.path, 0, 0,
                                std::string("material removal failed: ") + ex.what()});
       e.failed = e.removal_failed = true;
       return e;
     }
-    logger().info("stock: {} columns in {:.3f} s", removal->grid().columns(), seconds_since(t));
+    logger().info("stock: {} setup(s) in {:.3f} s", removals.size(), seconds_since(t));
   } else {
     e.tools = std::move(described);
   }
 
   // 3. The stream.
   PlanOptions plan_options;
-  if (removal && removal->ready()) plan_options.max_sample_step_mm = removal->sample_step_mm();
+  for (const auto& removal : removals)
+    if (removal->ready())
+      plan_options.max_sample_step_mm =
+          plan_options.max_sample_step_mm > 0
+              ? std::min(plan_options.max_sample_step_mm, removal->sample_step_mm())
+              : removal->sample_step_mm();
   plan_options.max_samples_per_move = options.max_samples_per_move;
   plan_options.look_ahead_batch = options.look_ahead_batch;
   EstimateOptions folding = options;
   for (const auto& [number, tool] : e.tools)
     if (tool.flutes > 0) folding.energy.flutes[number] = tool.flutes;
-  estimate_detail::ResultFolder folder(source, e.dialect, e.power, folding, removal.get(),
-                                       scan.commands, e);
+  std::vector<RemovalSimulator*> setup_removals;
+  for (const auto& removal : removals)
+    setup_removals.push_back(removal.get());
+  estimate_detail::ResultFolder folder(source, e.dialect, e.power, folding, setup_removals,
+                                       estimate_detail::SetupIndex(scan.setup_firsts()),
+                                       scan.setups.starts(), scan.commands, e);
   t = Clock::now();
   // Interpret again, plan and fold as one stream: each command goes through as soon as the
   // planner has timed it, so memory holds the look-ahead window, not the program.
@@ -310,7 +377,8 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
       folder.take(c, std::move(timed));
       ++streamed;
     });
-    interpret(source, again, [&planner](const CanonCommand& c) { planner.add(c); });
+    estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
+    interpret(source, again, [&](const CanonCommand& c) { planner.add(view.view(c)); });
     const double total_s = planner.finish();
     add_diagnostics(e, planner.take_diagnostics(), source.path);
     folder.finish(total_s);
@@ -320,7 +388,8 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     e.failed = e.removal_failed = true;
     return e;
   }
-  if (removal) add_diagnostics(e, removal->summary().diagnostics, source.path);
+  for (const auto& removal : removals)
+    add_diagnostics(e, removal->summary().diagnostics, source.path);
   // A result out of the range of numbers (a profile or program value at its limits) is not an
   // estimate: said, and the run fails, rather than shown as "0 s" or "inf".
   if (!std::isfinite(e.time_s) || !std::isfinite(e.energy.energy_j) ||

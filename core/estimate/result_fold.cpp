@@ -40,10 +40,34 @@ int kind_rank(LineKind kind) {
 
 ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
                            const PowerConstants& power, const EstimateOptions& options,
-                           RemovalSimulator* removal, std::size_t expected_commands, Estimate& out)
+                           std::vector<RemovalSimulator*> removals, SetupIndex setups,
+                           const std::vector<SetupStart>& starts, std::size_t expected_commands,
+                           Estimate& out)
     : source_(source), dialect_(dialect), power_constants_(power), options_(options),
-      removal_(removal), out_(out), expected_commands_(expected_commands),
-      lines_(source.lines.size()), energy_(power, options.energy), operations_(source, dialect) {}
+      removals_(std::move(removals)), setups_(std::move(setups)), out_(out),
+      expected_commands_(expected_commands), lines_(source.lines.size()),
+      energy_(power, options.energy), operations_(source, dialect) {
+  for (const SetupStart& start : starts)
+    setup_totals_.push_back(SetupSummary{start.line, start.reason, {}, true, 0, 0, 0});
+  if (setup_totals_.empty()) setup_totals_.push_back(SetupSummary{0, "the program's start"});
+}
+
+void ResultFolder::remove(std::size_t from, std::size_t to) {
+  // A batch may straddle a setup's start: each part goes to its own stock.
+  removed_.clear();
+  for (std::size_t k = from; k < to;) {
+    const std::size_t setup = setups_.of(next_index_ + k);
+    const std::size_t end = std::min(to, setups_.first(setup + 1) - next_index_);
+    moves_.clear();
+    for (std::size_t m = k; m < end; ++m)
+      moves_.push_back({next_index_ + m, &batch_commands_[m], &batch_timed_[m]});
+    std::vector<CommandRemoval> part;
+    removals_[std::min(setup, removals_.size() - 1)]->remove(moves_, part);
+    for (CommandRemoval& r : part)
+      removed_.push_back(std::move(r));
+    k = end;
+  }
+}
 
 void ResultFolder::take(const CanonCommand& command, TimedCommand&& timed) {
   batch_commands_.push_back(command);
@@ -55,13 +79,10 @@ void ResultFolder::take(const CanonCommand& command, TimedCommand&& timed) {
 void ResultFolder::run_batch() {
   const std::size_t n = batch_commands_.size();
   if (n == 0) return;
-  const bool removal_known = removal_ && removal_->ready();
-  if (removal_known) {
-    moves_.clear();
-    for (std::size_t k = 0; k < n; ++k)
-      moves_.push_back({next_index_ + k, &batch_commands_[k], &batch_timed_[k]});
-    removal_->remove(moves_, removed_);
-  }
+  // A setup whose stock could not be made (no cuts to size it by) removes nothing.
+  const bool removal_known = std::any_of(removals_.begin(), removals_.end(),
+                                         [](const RemovalSimulator* r) { return r->ready(); });
+  if (removal_known) remove(0, n);
   for (std::size_t k = 0; k < n; ++k) {
     const CanonCommand& command = batch_commands_[k];
     const TimedCommand& timed = batch_timed_[k];
@@ -71,6 +92,11 @@ void ResultFolder::run_batch() {
         energy_.add(next_index_ + k, command, timed, removed, segments_, &out_.diagnostics);
     const std::size_t operation = operations_.take(command, timed);
     fold(command, timed, removed, energy, operation);
+    SetupSummary& setup =
+        setup_totals_[std::min(setups_.of(next_index_ + k), setup_totals_.size() - 1)];
+    setup.time_s += timed.duration_s;
+    setup.energy_j += energy.energy_j;
+    if (removed) setup.removed_mm3 += removed->removed_mm3;
     follow_path(command, timed, segments_);
     if (options_.keep_trace)
       out_.trace.insert(out_.trace.end(), segments_.begin(), segments_.end());
@@ -83,6 +109,20 @@ void ResultFolder::run_batch() {
     last_progress_ = next_index_;
     options_.progress(0.1 + 0.9 * std::min(1.0, double(next_index_) / double(expected_commands_)));
   }
+}
+
+RemovalResult ResultFolder::merged_removal() const {
+  RemovalResult merged = removals_.front()->summary();
+  if (removals_.size() == 1) return merged;
+  merged.stock_description = "setup 1: " + merged.stock_description;
+  for (std::size_t k = 1; k < removals_.size(); ++k) {
+    const RemovalResult r = removals_[k]->summary();
+    merged.removed_mm3 += r.removed_mm3;
+    merged.memory_bytes += r.memory_bytes;
+    merged.stock_volume_mm3 += r.stock_volume_mm3;
+    merged.stock_description += "; setup " + std::to_string(k + 1) + ": " + r.stock_description;
+  }
+  return merged;
 }
 
 void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
@@ -196,13 +236,20 @@ void ResultFolder::finish(double total_s) {
     out_.diagnostics.push_back(
         {Severity::Warning, source_.path, first_overloaded_line_ + 1, 0, text});
   }
-  if (removal_ && removal_->ready()) {
-    out_.removal = removal_->summary();
+  if (std::any_of(removals_.begin(), removals_.end(),
+                  [](const RemovalSimulator* r) { return r->ready(); })) {
+    out_.removal = merged_removal();
     out_.removal->diagnostics.clear(); // the estimate's diagnostics have them
     out_.energy.removed_mm3 = out_.removal->removed_mm3;
     out_.energy.sec_j_mm3 =
         out_.energy.removed_mm3 > 0 ? out_.energy.energy_j / out_.energy.removed_mm3 : 0.0;
   }
+  for (std::size_t k = 0; k < setup_totals_.size() && k < removals_.size(); ++k) {
+    const RemovalResult r = removals_[k]->summary();
+    setup_totals_[k].stock = r.stock_description;
+    setup_totals_[k].stock_guessed = r.stock_description.find("(default") != std::string::npos;
+  }
+  out_.setups = setup_totals_;
   out_.series.power_w = power_.result();
   out_.series.mrr_mm3_s = mrr_.result();
   out_.path = path_.result();

@@ -12,16 +12,18 @@
 #include "ncjoule/estimate.hpp"
 #include "operations.hpp"
 #include "series_reducer.hpp"
+#include "setups.hpp"
 
 namespace ncjoule::estimate_detail {
 
 class ResultFolder {
 public:
-  // `removal` may be null (removal not simulated); `expected_commands` (from the first pass)
-  // scales the progress reports.
-  // `power` and `options` must outlive the folder.
+  // `removals`: one simulator per setup (`setups` tells which command is in which; `starts`
+  // where and why each begins), or none (removal not simulated); `expected_commands` (from the
+  // first pass) scales the progress reports. `power` and `options` must outlive the folder.
   ResultFolder(const SourceFile& source, const Dialect& dialect, const PowerConstants& power,
-               const EstimateOptions& options, RemovalSimulator* removal,
+               const EstimateOptions& options, std::vector<RemovalSimulator*> removals,
+               SetupIndex setups, const std::vector<SetupStart>& starts,
                std::size_t expected_commands, Estimate& out);
 
   void take(const CanonCommand& command, TimedCommand&& timed);
@@ -40,7 +42,14 @@ private:
   const Dialect& dialect_;
   const PowerConstants& power_constants_;
   const EstimateOptions& options_;
-  RemovalSimulator* removal_;
+  // Removes a batch's commands [from, to) with the setups' simulators.
+  void remove(std::size_t from, std::size_t to);
+  // The setups' removal results as one: the program's.
+  RemovalResult merged_removal() const;
+
+  std::vector<RemovalSimulator*> removals_;
+  SetupIndex setups_;
+  std::vector<SetupSummary> setup_totals_;
   Estimate& out_;
   std::size_t expected_commands_;
 

@@ -97,6 +97,7 @@ void Interpreter::convert_other_codes(const BlockValues& v) {
     if (dialect_.g70_g71_units && (code == 700 || code == 710 || code == 7000 || code == 7100)) {
       // Heidenhain ISO and Sinumerik: G70 (G700) inch, G71 (G710) millimetres.
       const bool inch = code == 700 || code == 7000;
+      units_given_ = true;
       if (inch != state_.inch) state_.inch = inch, emit_simple(CanonKind::LengthUnits);
       continue;
     }

@@ -19,6 +19,7 @@ void Interpreter::convert_plane_and_units(const BlockValues& v) {
     if (p != state_.plane) state_.plane = p, emit_simple(CanonKind::PlaneSelect);
     if (code == 200 || code == 210) {
       const bool inch = code == 200;
+      units_given_ = true;
       if (inch != state_.inch) {
         state_.inch = inch;
         emit_simple(CanonKind::LengthUnits);

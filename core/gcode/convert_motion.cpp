@@ -49,7 +49,7 @@ void Interpreter::convert_motion(BlockValues& v, bool axes_used) {
   if (!axes_used && (v.has_axis() || (motion_word_given && motion_ != Motion::None))) {
     switch (motion_) {
     case Motion::Rapid:
-      straight(CanonKind::Traverse, target_from_words(v, g53));
+      straight(CanonKind::Traverse, target_from_words(v, g53), {}, g53 ? named_axes(v) : 0);
       break;
     case Motion::Linear:
       if (state_.feed_mode == FeedMode::InverseTime && !v.has('f') && v.has_axis())
@@ -61,7 +61,7 @@ void Interpreter::convert_motion(BlockValues& v, bool axes_used) {
         CanonCommand probe_length = make(CanonKind::Feed);
         probe_length.end = end;
         inverse_time_feed(move_length(probe_length), v);
-        straight(CanonKind::Feed, end);
+        straight(CanonKind::Feed, end, {}, g53 ? named_axes(v) : 0);
       }
       break;
     case Motion::ArcCW:

@@ -38,6 +38,14 @@ Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& opt
   arc_incremental_ = !dialect_.arc_centre_absolute;
   params_.set_system_lookup(
       [this](std::string_view name, double& value) { return system_parameter(name, value); });
+  for (const auto& [index, origin] : options.work_offsets) {
+    if (index < 1 || index > 9) continue;
+    g5x_[std::size_t(index)] = origin;
+    const double values[6] = {origin.x, origin.y, origin.z, origin.a, origin.b, origin.c};
+    for (int i = 0; i < 6; ++i)
+      params_.at(param::kG54 + 20 * (index - 1) + i) = values[i];
+  }
+  state_.inch = options.start_inch;
 }
 
 bool Interpreter::system_parameter(std::string_view name, double& value) const {
@@ -231,6 +239,7 @@ InterpretResult Interpreter::run() {
       if (dialect_.g70_g71_units && !finished_) {
         const std::string_view rest = block_.percent_name;
         const bool inch = rest.find("g70") != std::string_view::npos;
+        if (inch || rest.find("g71") != std::string_view::npos) units_given_ = true;
         if ((inch || rest.find("g71") != std::string_view::npos) && inch != state_.inch) {
           state_.inch = inch;
           emit_simple(CanonKind::LengthUnits);
@@ -271,6 +280,7 @@ InterpretResult Interpreter::run() {
     result_.completed = true;
   }
   result_.program_end = finished_;
+  result_.units_given = units_given_;
   result_.commands = command_count_;
   return std::move(result_); // run() is called once
 }

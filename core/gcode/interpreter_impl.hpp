@@ -130,7 +130,12 @@ private:
 
   // --- motion (motion.cpp) -------------------------------------------------------------------
   Pose target_from_words(const BlockValues& v, bool machine_coordinates);
-  void straight(CanonKind kind, const Pose& end, std::string text = {});
+  // A straight move to `end`; `machine_axes` marks the axes sent to a machine position
+  // (CanonCommand::machine_axes).
+  void straight(CanonKind kind, const Pose& end, std::string text = {},
+                std::uint8_t machine_axes = 0);
+  // The linear axes a block names (X, Y, Z as bits 0, 1, 2).
+  static std::uint8_t named_axes(const BlockValues& v);
   void probe(const Pose& end);
   void spline(const BlockValues& v, bool quadratic);
   void spindle_synced(const BlockValues& v);
@@ -226,6 +231,7 @@ private:
   unsigned known_axes_ = 0, axes_being_set_ = 0;
   std::array<Pose, 10> g5x_{}; // work offsets 1..9 (mm)
   int g5x_index_ = 1;
+  bool units_given_ = false; // G20/G21 or its dialect's equivalent seen
   Pose g92_;                 // G92 offsets (mm)
   double tool_offset_z_ = 0; // active tool length offset (mm)
   Motion motion_ = Motion::Rapid;

@@ -94,10 +94,16 @@ Pose Interpreter::target_from_words(const BlockValues& v, bool machine_coordinat
   return end;
 }
 
-void Interpreter::straight(CanonKind kind, const Pose& end, std::string text) {
+std::uint8_t Interpreter::named_axes(const BlockValues& v) {
+  return std::uint8_t((v.has('x') ? 1 : 0) | (v.has('y') ? 2 : 0) | (v.has('z') ? 4 : 0));
+}
+
+void Interpreter::straight(CanonKind kind, const Pose& end, std::string text,
+                           std::uint8_t machine_axes) {
   CanonCommand c = make(kind);
   c.end = end;
   c.text = std::move(text);
+  c.machine_axes = machine_axes;
   pos_ = end;
   emit(std::move(c));
 }
@@ -340,10 +346,10 @@ void Interpreter::go_home(const BlockValues& v, int base) {
         *axis_ref(end, i) = axis(home_prog, i);
         if (i < 3) axes_being_set_ |= 1u << i; // home is a known place
       }
-    straight(CanonKind::Traverse, end);
+    straight(CanonKind::Traverse, end, {}, named_axes(v));
   } else {
     axes_being_set_ = 7;
-    straight(CanonKind::Traverse, home_prog);
+    straight(CanonKind::Traverse, home_prog, {}, 7);
   }
 }
 

@@ -265,3 +265,40 @@ TEST_CASE("which way +Z points: up, down, or left to each program") {
   check_names_file_and_key(e, "kinematics.z_positive");
   CHECK(e.reason().find("\"down\"") != std::string::npos);
 }
+
+TEST_CASE("[setup]: work offsets, travel, Z home and power-on units") {
+  const std::string generic = read(sample_path("generic-3axis.toml"));
+  const MachineProfile plain = parse_profile(generic, "g.toml");
+  CHECK(plain.setup.work_offsets.empty());
+  CHECK_FALSE(plain.setup.travel);
+  CHECK(plain.setup.z_home_above_work_mm == 100);
+  CHECK_FALSE(plain.setup.power_on_inch);
+
+  const MachineProfile m = parse_profile(generic + R"(
+[setup]
+source = "the shop's setup sheet"
+z_home_above_work_in = 6
+power_on_units = "inch"
+work_offsets_mm = { G54 = [-381.0, -203.2, -355.6], "G59.1" = [-100, -50, -300] }
+travel_mm = { x = [-762, 0], y = [-406, 0], z = [-508, 0] }
+)",
+                                         "s.toml");
+  CHECK(m.setup.z_home_above_work_mm == doctest::Approx(152.4));
+  CHECK(m.setup.power_on_inch == true);
+  REQUIRE(m.setup.work_offsets.size() == 2);
+  CHECK(m.setup.work_offsets.at(1).z == doctest::Approx(-355.6));
+  CHECK(m.setup.work_offsets.at(7).x == -100);
+  REQUIRE(m.setup.travel);
+  CHECK((*m.setup.travel)[1].first == -406);
+
+  check_names_file_and_key(refusal(generic + "[setup]\nwork_offsets_mm = { G60 = [0, 0, 0] }\n"),
+                           "setup.work_offsets_mm.G60");
+  check_names_file_and_key(refusal(generic + "[setup]\nwork_offsets_mm = { G54 = [0, 0] }\n"),
+                           "setup.work_offsets_mm.G54");
+  check_names_file_and_key(
+      refusal(generic + "[setup]\ntravel_mm = { x = [0, -1], y = [-1, 0], z = [-1, 0] }\n"),
+      "setup.travel_mm.x");
+  check_names_file_and_key(refusal(generic + "[setup]\npower_on_units = \"cm\"\n"),
+                           "setup.power_on_units");
+  check_names_file_and_key(refusal(generic + "[setup]\nhome_above = 3\n"), "setup.home_above");
+}

@@ -37,6 +37,12 @@ struct EstimateOptions {
   // Tools from a job file or the command line; a tool here replaces the program's header
   // comment (and the tool table) for the same number.
   std::map<int, Tool> tools;
+  // The stocks of the program's setups after the first (a job file's [[setup]] entries, in
+  // order; `stock` is the first setup's); a setup given none gets the box of its own cuts.
+  std::vector<std::optional<StockSpec>> setup_stocks;
+  // Work offsets (machine coordinates of each origin, mm; 1..9 = G54..G59.3) from a job file,
+  // in place of the profile's [setup] work_offsets_mm for the same offset.
+  std::map<int, Pose> work_offsets;
   // The tool of moves that select and describe none; empty: the machine profile's.
   std::optional<Tool> default_tool;
   // The workpiece material (material.hpp); empty: the machine profile's. It sets the cutting
@@ -187,6 +193,15 @@ struct PathPoint {
   bool rapid = false;
 };
 
+// One setup of a program (a clamping of the part): where it starts, why, its stock and totals.
+struct SetupSummary {
+  int first_line = 0;        // 0-based source line of its first command
+  std::string reason;        // "the program's start", "M0 at line 41, then G55"
+  std::string stock;         // the stock it cuts, as RemovalResult::stock_description says
+  bool stock_guessed = true; // the box of its own cuts, not a stock given
+  double time_s = 0, energy_j = 0, removed_mm3 = 0;
+};
+
 struct Estimate {
   std::string file;
   Dialect dialect;
@@ -204,6 +219,9 @@ struct Estimate {
   PowerConstants power;                 // the constants used (the profile's, with the material)
   EnergyResult energy;                  // totals and components (no per-command list)
   std::vector<OperationSummary> operations;
+  std::vector<SetupSummary> setups; // at least one
+  // Feed moves taken for positioning rather than cutting (StockExtent::positioning_moves).
+  std::size_t positioning_moves = 0;
   std::vector<LineSummary> lines; // one per source line that holds code, in file order
   std::vector<std::string> notes; // what LineSummary::note refers to
   ProgramSeries series;

@@ -217,6 +217,11 @@ struct CanonCommand {
   // False for a move that starts before the program has set X, Y and Z (the start is the
   // assumed 0,0,0, not where the spindle is): "G0 X Y" before the first Z of most posts.
   bool start_known = true;
+  // Axes this move sends to a machine position rather than a work position (G53, the return of
+  // G28/G30 to home): bit 0 X, 1 Y, 2 Z. Their end is where the work offsets in the interpreter's
+  // parameters put that machine position; where nothing describes the offsets, later stages
+  // know it is not a place in the work (a Z home is above the part, not at its Z0).
+  std::uint8_t machine_axes = 0;
   // Arcs: centre in the plane's two axes (X/Y for G17, Y/Z for G19, Z/X for G18), and the
   // rotation as rs274 prints it: +k = counter-clockwise with k-1 extra full turns, -k clockwise.
   double centre_first = 0, centre_second = 0;
@@ -288,6 +293,11 @@ struct InterpreterOptions : InterpreterLimits {
   // false: no diagnostics are collected (a second pass over a program whose first pass gave
   // them); the commands are the same.
   bool keep_diagnostics = true;
+  // Work offsets known before the program runs (mm, machine coordinates of each origin;
+  // 1..9 = G54..G59.3), as a controller holds them in its parameters; empty: all zero.
+  std::map<int, Pose> work_offsets;
+  // The program starts in inches (a control set to inch at power-on) until G20/G21 says.
+  bool start_inch = false;
 };
 
 struct InterpretResult {
@@ -301,6 +311,7 @@ struct InterpretResult {
   // has none holds no G-code, whatever else it holds (words of several letters, stray bytes).
   std::size_t word_blocks = 0;
   bool program_end = false; // ended at M2/M30 or a closing '%', not at the end of the file
+  bool units_given = false; // a G20/G21 (G70/G71, a Heidenhain header) set the units
   std::size_t commands = 0;
 };
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -120,6 +121,22 @@ double rated_spindle_power_w(const PowerConstants& power, double rpm);
 PowerConstants with_material(const PowerConstants& power, const Material& material,
                              bool* used = nullptr);
 
+// Where the work sits in the machine ([setup] of a profile, work offsets of a job file): what a
+// program that moves in machine coordinates (G53, G28/G30) needs to be placed.
+struct WorkSetup {
+  // Machine coordinates (mm) of each work offset's origin: 1..9 = G54..G59.3. Empty: not
+  // described (the estimate then takes machine Z home to be above the work).
+  std::map<int, Pose> work_offsets;
+  // Machine travel (mm, machine coordinates) of X, Y, Z as (min, max); not given: unchecked.
+  std::optional<std::array<std::pair<double, double>, 3>> travel;
+  // Without work offsets: how far above the highest point a program reaches (and above its Z0)
+  // machine Z home is taken to be.
+  double z_home_above_work_mm = 100;
+  // The units of a program that sets neither G20 nor G21, as the control is set at power-on
+  // (Haas setting 9, Fanuc parameter 0000 INI); not given: mm, with a warning either way.
+  std::optional<bool> power_on_inch;
+};
+
 struct MachineProfile {
   std::string name;
   std::string source_path; // file it came from
@@ -129,6 +146,7 @@ struct MachineProfile {
   // The tool moves cut with where the program selects none and describes none ([default_tool]).
   std::optional<Tool> default_tool;
   Kinematics kinematics;
+  WorkSetup setup;
   PowerConstants power;
   std::vector<std::string> sources; // where the constants come from, as written in the file
 };

@@ -1,0 +1,103 @@
+#include "machine_moves.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace ncjoule::estimate_detail {
+namespace {
+
+constexpr std::uint8_t kZ = 4;
+
+std::string offset_name(int index) {
+  static const char* const names[] = {"G54", "G55",   "G56",   "G57",  "G58",
+                                      "G59", "G59.1", "G59.2", "G59.3"};
+  return index >= 1 && index <= 9 ? names[index - 1] : "G54";
+}
+
+} // namespace
+
+MachineMoves::MachineMoves(const WorkSetup& setup, bool offsets_given, double home_z,
+                           std::string file)
+    : setup_(setup), offsets_given_(offsets_given), home_z_(home_z), file_(std::move(file)) {
+  // G54 is in force from the start.
+  if (const auto g54 = setup.work_offsets.find(1); g54 != setup.work_offsets.end())
+    work_offset_ = g54->second;
+}
+
+double MachineMoves::home_z_for(double highest_program_z, const WorkSetup& setup) {
+  return std::max(highest_program_z, 0.0) + setup.z_home_above_work_mm;
+}
+
+CanonCommand MachineMoves::view(const CanonCommand& command) {
+  CanonCommand c = command;
+  switch (c.kind) {
+  case CanonKind::WorkOffset: {
+    const int index = int(c.value);
+    work_offset_ = c.end;
+    if (first_offset_ == 0) first_offset_ = index;
+    if (!offsets_given_ && index != first_offset_ && !warned_offsets_) {
+      warned_offsets_ = true;
+      diagnostics_.push_back(
+          {Severity::Warning, file_, c.line + 1, 0,
+           "the program switches from " + offset_name(first_offset_) + " to " + offset_name(index) +
+               " here; nothing describes where they are (work_offsets_mm under [setup] in the "
+               "profile, or in a job file): both are taken at one place, so no travel between "
+               "them is timed"});
+    }
+    return c;
+  }
+  case CanonKind::AxisOffset:
+    axis_offset_ = c.end;
+    return c;
+  case CanonKind::ToolLengthOffset:
+    tool_length_ = c.end.z;
+    return c;
+  default:
+    break;
+  }
+  if (!is_move(c.kind)) return c;
+  if (!(c.machine_axes & kZ)) highest_z_ = std::max({highest_z_, c.start.z, c.end.z});
+  if (!offsets_given_) {
+    // Without offsets, Z home is above the work: the tool stays there until Z is programmed.
+    if (lifted_) {
+      c.start.z = home_z_;
+      if (c.end.z == programmed_z_ && !(c.machine_axes & kZ))
+        c.end.z = home_z_;
+      else
+        lifted_ = false;
+    }
+    if (c.machine_axes & kZ) {
+      lifted_ = true;
+      programmed_z_ = c.end.z;
+      c.end.z = home_z_;
+    }
+  } else if (setup_.travel) {
+    check_travel(c);
+  }
+  return c;
+}
+
+void MachineMoves::check_travel(const CanonCommand& c) {
+  if (warned_travel_) return;
+  const double machine[3] = {c.end.x + work_offset_.x + axis_offset_.x,
+                             c.end.y + work_offset_.y + axis_offset_.y,
+                             c.end.z + work_offset_.z + axis_offset_.z + tool_length_};
+  static const char* const names = "XYZ";
+  for (int i = 0; i < 3; ++i) {
+    const auto [low, high] = (*setup_.travel)[std::size_t(i)];
+    constexpr double kSlackMm = 1e-6;
+    if (machine[i] >= low - kSlackMm && machine[i] <= high + kSlackMm) continue;
+    warned_travel_ = true;
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "this move takes %c to %.3f mm in machine coordinates, past the machine's "
+                  "travel (%.3f to %.3f mm): the controller would stop with an over-travel alarm "
+                  "(is the work offset right?)",
+                  names[i], machine[i], low, high);
+    diagnostics_.push_back({Severity::Warning, file_, c.line + 1, 0, text});
+    return;
+  }
+}
+
+} // namespace ncjoule::estimate_detail

@@ -1,0 +1,63 @@
+// Internal: the program's moves as the machine runs them, where it moves in machine coordinates.
+//
+// The interpreter follows rs274: a G53 move or a G28/G30 return goes to a machine position that
+// the work offsets in its parameters turn into work coordinates. A profile or job file that gives
+// the offsets ([setup] work_offsets_mm) seeds those parameters, and the moves land where they
+// do on the machine. Where nothing gives them, every offset is zero and `G53 G0 Z0.` or
+// `G91 G28 Z0.` would send the tool to the program's Z0, into the part, though on a Fanuc, Haas
+// or Hurco they send it up to Z home. So without offsets a move that sends Z to a machine
+// position ends at the machine's Z home, taken to be `z_home_above_work_mm` above the highest
+// point the program reaches (and at least above its Z0), and the tool stays there until the
+// program moves Z again. Such moves never cut and never size the default stock.
+//
+// The view also checks what only the machine's coordinates tell: a position past the travel
+// limits (when offsets and limits are given), and a switch between work offsets nothing
+// describes (taken at one place: the time of the move between them is not known).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/machine.hpp"
+
+namespace ncjoule::estimate_detail {
+
+class MachineMoves {
+public:
+  // `offsets_given`: the work offsets are described (the interpreter's parameters hold them).
+  // `home_z`: the work Z of the machine's Z home when they are not.
+  MachineMoves(const WorkSetup& setup, bool offsets_given, double home_z, std::string file);
+
+  // The command as the machine runs it (positions changed only without offsets).
+  CanonCommand view(const CanonCommand& command);
+
+  // Moves Z home (while the highest point of the program is still being found).
+  void set_home_z(double home_z) { home_z_ = home_z; }
+  // The highest work Z the program's own moves reach (not those sent to machine positions).
+  double highest_program_z() const { return highest_z_; }
+  // What the view found to warn about, once each.
+  std::vector<Diagnostic> take_diagnostics() { return std::move(diagnostics_); }
+
+  // The work Z of Z home for a program whose own moves reach `highest_program_z`.
+  static double home_z_for(double highest_program_z, const WorkSetup& setup);
+
+private:
+  void check_travel(const CanonCommand& move);
+
+  WorkSetup setup_;
+  bool offsets_given_ = false;
+  double home_z_ = 0;
+  std::string file_;
+  bool lifted_ = false;     // the tool is at Z home since a machine move
+  double programmed_z_ = 0; // where the interpreter thinks Z is meanwhile
+  double highest_z_ = 0;    // at least the program's Z0
+  int first_offset_ = 0;    // the first work offset the program selects (1 = G54)
+  bool warned_offsets_ = false, warned_travel_ = false;
+  Pose work_offset_{}, axis_offset_{};
+  double tool_length_ = 0;
+  std::vector<Diagnostic> diagnostics_;
+};
+
+} // namespace ncjoule::estimate_detail

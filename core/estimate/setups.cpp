@@ -1,0 +1,99 @@
+#include "setups.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "ncjoule/text.hpp"
+
+namespace ncjoule::estimate_detail {
+namespace {
+
+std::string offset_name(int index) {
+  static const char* const names[] = {"G54", "G55",   "G56",   "G57",  "G58",
+                                      "G59", "G59.1", "G59.2", "G59.3"};
+  return index >= 1 && index <= 9 ? names[index - 1] : "G54";
+}
+
+} // namespace
+
+SetupScan::SetupScan(const SourceFile& source, const Dialect& dialect)
+    : source_(source), dialect_(dialect) {
+  starts_.push_back({0, 0, "the program's start"});
+}
+
+std::string SetupScan::setup_comment_before(int line) {
+  std::string found;
+  const int last = std::min(line, int(source_.lines.size()) - 1);
+  for (int l = looked_to_ + 1; l <= last && found.empty(); ++l)
+    for (const LineComment& comment :
+         line_comments(source_.line_text(std::size_t(l)), dialect_).comments)
+      if (names_setup(comment.text)) {
+        found = std::string(trim(comment.text));
+        break;
+      }
+  looked_to_ = std::max(looked_to_, last);
+  return found;
+}
+
+bool SetupScan::names_setup(std::string_view text) {
+  const std::string t = to_lower(text);
+  for (const char* words :
+       {"setup", "set up", "set-up", "flip", "turn over", "turn the part", "turn part", "part over",
+        "second side", "other side", "side 2", "reclamp", "re-clamp", "refixture", "re-fixture"})
+    if (t.find(words) != std::string::npos) return true;
+  return false;
+}
+
+void SetupScan::add(const CanonCommand& c, std::size_t index) {
+  if (c.kind == CanonKind::ProgramStop || c.kind == CanonKind::OptionalStop) {
+    if (!stopped_) {
+      stopped_ = true;
+      stop_index_ = index;
+      stop_line_ = c.line;
+      stop_code_ = c.kind == CanonKind::ProgramStop ? "M0" : "M1";
+      looked_to_ = c.line - 1; // the stop's own line may say why it stops
+    }
+    return;
+  }
+  if (c.kind == CanonKind::WorkOffset) {
+    const int old = work_offset_;
+    work_offset_ = int(c.value);
+    if (stopped_ && work_offset_ != old) {
+      starts_.push_back({stop_index_ + 1, c.line,
+                         stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then " +
+                             offset_name(work_offset_)});
+      stopped_ = false;
+    }
+    return;
+  }
+  if (!stopped_) return;
+  if (const std::string comment = setup_comment_before(c.line); !comment.empty()) {
+    starts_.push_back(
+        {stop_index_ + 1, c.line,
+         stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then (" + comment + ")"});
+    stopped_ = false;
+  } else if (c.kind == CanonKind::Probe) {
+    starts_.push_back(
+        {stop_index_ + 1, c.line,
+         stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then a probing move"});
+    stopped_ = false;
+  } else if (c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) {
+    stopped_ = false; // the same part goes on being cut
+  }
+}
+
+SetupIndex::SetupIndex(std::vector<std::size_t> first_commands)
+    : first_(std::move(first_commands)) {
+  if (first_.empty()) first_.push_back(0);
+}
+
+std::size_t SetupIndex::of(std::size_t command) const {
+  const auto it = std::upper_bound(first_.begin(), first_.end(), command);
+  return it == first_.begin() ? 0 : std::size_t(it - first_.begin()) - 1;
+}
+
+std::size_t SetupIndex::first(std::size_t k) const {
+  return k < first_.size() ? first_[k] : std::numeric_limits<std::size_t>::max();
+}
+
+} // namespace ncjoule::estimate_detail

@@ -1,0 +1,88 @@
+// [setup]: where the work sits in the machine, for programs that move in machine coordinates.
+#include <cctype>
+
+#include "sections.hpp"
+
+namespace ncjoule::profile_detail {
+namespace {
+
+// "G54" .. "G59", "G59.1" .. "G59.3" -> 1 .. 9; 0 when the name is none of them.
+int work_offset_index(std::string name) {
+  for (char& c : name)
+    c = char(std::toupper(static_cast<unsigned char>(c)));
+  static const char* const names[] = {"G54", "G55",   "G56",   "G57",  "G58",
+                                      "G59", "G59.1", "G59.2", "G59.3"};
+  for (int k = 0; k < 9; ++k)
+    if (name == names[k]) return k + 1;
+  return 0;
+}
+
+// An array of `count` finite numbers, or the reason it is not.
+std::optional<std::vector<double>> numbers(const toml::node* node, std::size_t count) {
+  const toml::array* list = node ? node->as_array() : nullptr;
+  if (!list || list->size() != count) return std::nullopt;
+  std::vector<double> out;
+  for (const toml::node& item : *list) {
+    const std::optional<double> v = item.value<double>();
+    if (!v || !std::isfinite(*v)) return std::nullopt;
+    out.push_back(*v);
+  }
+  return out;
+}
+
+} // namespace
+
+std::map<int, Pose> read_work_offsets(const toml::table& table, const TableReader& owner,
+                                      std::string_view key) {
+  std::map<int, Pose> offsets;
+  for (const auto& [name, value] : table) {
+    const int index = work_offset_index(std::string(name.str()));
+    const std::string where = std::string(key) + "." + std::string(name.str());
+    if (index == 0) owner.fail(where, "names no work offset: G54 to G59, G59.1 to G59.3");
+    const auto xyz = numbers(&value, 3);
+    if (!xyz) owner.fail(where, "must be [X, Y, Z], the origin's machine coordinates in mm");
+    offsets[index] = Pose{(*xyz)[0], (*xyz)[1], (*xyz)[2], 0, 0, 0};
+  }
+  return offsets;
+}
+
+WorkSetup read_setup(TableReader t, std::vector<std::string>& sources) {
+  WorkSetup setup;
+  if (const auto source = t.optional_string("source")) sources.push_back("setup: " + *source);
+  if (const auto above =
+          t.optional_quantity("z_home_above_work", Dimension::Length, Range::NonNegative))
+    setup.z_home_above_work_mm = *above;
+  if (const auto units = t.optional_string("power_on_units")) {
+    if (*units == "inch" || *units == "in")
+      setup.power_on_inch = true;
+    else if (*units == "mm")
+      setup.power_on_inch = false;
+    else
+      t.fail("power_on_units", "must be \"mm\" or \"inch\" (the units a program that sets "
+                               "neither G20 nor G21 runs in)");
+  }
+  if (const toml::node* node = t.raw("work_offsets_mm")) {
+    const toml::table* table = node->as_table();
+    if (!table) t.fail("work_offsets_mm", "must be a table: G54 = [X, Y, Z], ...");
+    setup.work_offsets = read_work_offsets(*table, t, "work_offsets_mm");
+  }
+  if (const toml::node* node = t.raw("travel_mm")) {
+    const toml::table* table = node->as_table();
+    if (!table) t.fail("travel_mm", "must be a table: x = [MIN, MAX], y = ..., z = ...");
+    std::array<std::pair<double, double>, 3> travel{};
+    constexpr const char* axes[] = {"x", "y", "z"};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto range = numbers(table->get(axes[i]), 2);
+      const std::string where = std::string("travel_mm.") + axes[i];
+      if (!range || !((*range)[0] < (*range)[1]))
+        t.fail(where, "must be [MIN, MAX] in machine coordinates (mm), MIN below MAX");
+      travel[i] = {(*range)[0], (*range)[1]};
+    }
+    if (table->size() != 3) t.fail("travel_mm", "takes x, y and z, nothing else");
+    setup.travel = travel;
+  }
+  t.finish();
+  return setup;
+}
+
+} // namespace ncjoule::profile_detail

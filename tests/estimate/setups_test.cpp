@@ -1,0 +1,95 @@
+// Programs that machine a part in two clampings: each setup cuts a stock of its own, found from a
+// stop followed by another work offset, a probe or a comment naming the setup; a stop alone
+// (M1 between operations) starts none.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "ncjoule/estimate.hpp"
+#include "ncjoule/profile.hpp"
+
+using namespace ncjoule;
+
+namespace {
+
+MachineProfile generic() {
+  return load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
+}
+
+// A 6 mm end mill pockets 40 x 20 x 3 mm in two passes, starting at X0 Y0 and returning up.
+std::string pocket() {
+  std::string s = "G0 Z5\nG0 X3 Y3\n";
+  for (const char* z : {"-1.5", "-3"}) {
+    s += std::string("G1 Z") + z + " F200\n";
+    for (double y = 3; y <= 17.01; y += 4.5) {
+      char b[96];
+      std::snprintf(b, sizeof b, "G1 X3 Y%.2f F600\nG1 X37 Y%.2f\n", y, y);
+      s += b;
+    }
+    s += "G0 Z5\nG0 X3 Y3\n";
+  }
+  return s;
+}
+
+// The same pocket on both sides of a part: the top in G54, then `between`, then the other side.
+std::string two_sides(const std::string& between) {
+  return "G21 G90 G17\n(T1 D=6. CR=0. - FLAT END MILL)\nT1 M6\nS8000 M3\nG54\n" + pocket() +
+         "M5\n" + between + "\nS8000 M3\n" + pocket() + "M5\nM30\n";
+}
+
+} // namespace
+
+TEST_CASE("a stop, then another work offset, starts a second setup with its own stock") {
+  const Estimate e = estimate_program(make_source("flip.nc", two_sides("M0\nG55")), generic(), {});
+  REQUIRE_FALSE(e.failed);
+  REQUIRE(e.setups.size() == 2);
+  CHECK(e.setups[1].reason.find("M0") != std::string::npos);
+  CHECK(e.setups[1].reason.find("G55") != std::string::npos);
+  // Each side removes its pocket below the default stock's top, the first pass's level (-1.5):
+  // 40 x 19.5 (the passes' reach) x 1.5 = 1170 mm^3 less the corners a round tool leaves.
+  CHECK(e.setups[0].removed_mm3 > 1100);
+  CHECK(e.setups[0].removed_mm3 < 1170);
+  CHECK(e.setups[1].removed_mm3 == doctest::Approx(e.setups[0].removed_mm3).epsilon(0.01));
+  CHECK(e.energy.removed_mm3 ==
+        doctest::Approx(e.setups[0].removed_mm3 + e.setups[1].removed_mm3).epsilon(1e-6));
+  CHECK(e.setups[0].time_s + e.setups[1].time_s == doctest::Approx(e.time_s).epsilon(1e-6));
+  CHECK(e.setups[0].energy_j + e.setups[1].energy_j ==
+        doctest::Approx(e.energy.energy_j).epsilon(1e-6));
+}
+
+TEST_CASE("one stock for both sides would leave the second nothing to cut") {
+  // The same program with an M1 only: one setup, the second pocket cuts air.
+  const Estimate one = estimate_program(make_source("m1.nc", two_sides("M1")), generic(), {});
+  const Estimate two =
+      estimate_program(make_source("flip.nc", two_sides("M0\nG55")), generic(), {});
+  REQUIRE(one.setups.size() == 1);
+  REQUIRE(two.setups.size() == 2);
+  CHECK(two.energy.removed_mm3 == doctest::Approx(2 * one.energy.removed_mm3).epsilon(0.01));
+}
+
+TEST_CASE("a comment naming the side after a stop starts a setup, and so does a probe") {
+  for (const std::string between :
+       {"M0\n(FLIP PART)", "M1 (TURN PART OVER)", "M0\nG38.2 Z-10 F100"}) {
+    CAPTURE(between);
+    const Estimate e = estimate_program(make_source("p.nc", two_sides(between)), generic(), {});
+    REQUIRE_FALSE(e.failed);
+    CHECK(e.setups.size() == 2);
+  }
+  // A work offset change without a stop is another fixture on the table, not a new clamping of
+  // the same part: one setup (its stock is the box of all cuts).
+  const Estimate e = estimate_program(make_source("p.nc", two_sides("G55")), generic(), {});
+  CHECK(e.setups.size() == 1);
+}
+
+TEST_CASE("a job's stock per setup: the second given, the first from the cuts") {
+  EstimateOptions options;
+  // The second side's block is 10 mm taller than the pockets: its top face is cut too.
+  options.setup_stocks.push_back(parse_stock_spec("box:0,0,-10,40,20,0"));
+  const Estimate e =
+      estimate_program(make_source("flip.nc", two_sides("M0\nG55")), generic(), options);
+  REQUIRE(e.setups.size() == 2);
+  CHECK(e.setups[0].stock_guessed);
+  CHECK_FALSE(e.setups[1].stock_guessed);
+  CHECK(e.setups[1].stock.find("box") != std::string::npos);
+  CHECK(e.setups[1].removed_mm3 > e.setups[0].removed_mm3 * 0.9);
+}

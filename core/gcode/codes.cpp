@@ -54,6 +54,8 @@ int g_group(int code) {
   case 411:
   case 420:
   case 421:
+  case 412:
+  case 422:
     return 7;
   case 430:
   case 431:

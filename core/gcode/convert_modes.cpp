@@ -31,12 +31,13 @@ void Interpreter::convert_plane_and_units(const BlockValues& v) {
 // 13. Cutter compensation.
 void Interpreter::convert_cutter_compensation(const BlockValues& v) {
   for (int code : v.g) {
-    if (code == 400) cutter_comp_ = 40;
-    if (code == 410 || code == 420 || code == 411 || code == 421) {
-      cutter_comp_ = code / 10;
-      warning(v.g_column(code), g_name(code) + " cutter radius compensation is not modelled: "
-                                               "moves are taken as programmed (tool centre on "
-                                               "the programmed path)");
+    if (code == 400) {
+      cutter_comp_ = 40;
+      comp_off(v.g_column(code));
+    }
+    if (code == 410 || code == 420 || code == 411 || code == 421 || code == 412 || code == 422) {
+      cutter_comp_ = code;
+      comp_on(v, code);
     }
   }
 }

@@ -47,6 +47,22 @@ void Interpreter::convert_motion(BlockValues& v, bool axes_used) {
                    "would refuse the block)");
   }
   if (!axes_used && (v.has_axis() || (motion_word_given && motion_ != Motion::None))) {
+    // G0/G1/G2/G3 are what cutter radius compensation offsets (not G53: LinuxCNC refuses it).
+    const bool plain = motion_ == Motion::Rapid || motion_ == Motion::Linear ||
+                       motion_ == Motion::ArcCW || motion_ == Motion::ArcCCW;
+    comp_column_ = v.g_column(int(motion_));
+    for (char axis : {'x', 'y', 'z'})
+      if (!comp_column_ && v.has(axis)) comp_column_ = v.column[std::size_t(axis - 'a')];
+    if (plain && g53) comp_bypass(v.g_column(530), "G53"); // LinuxCNC refuses it
+    if (motion_ == Motion::Rapid || motion_ == Motion::Linear) {
+      comp_.arc_not_allowed = false;
+    } else if ((motion_ == Motion::ArcCW || motion_ == Motion::ArcCCW) && comp_.arc_not_allowed) {
+      comp_.arc_not_allowed = false;
+      if (comp_strict())
+        error(v.column['g' - 'a'], "the move just after exiting cutter radius compensation "
+                                   "must be straight, not an arc");
+    }
+    comp_motion_ = plain && !g53;
     switch (motion_) {
     case Motion::Rapid:
       straight(CanonKind::Traverse, target_from_words(v, g53), {}, g53 ? named_axes(v) : 0);
@@ -101,11 +117,21 @@ void Interpreter::convert_motion(BlockValues& v, bool axes_used) {
       }
       break;
     }
+    comp_motion_ = false;
   }
 }
 
 // 21. Stops and subprogram calls (Fanuc, Haas).
 void Interpreter::convert_stops_and_calls(const BlockValues& v) {
+  // A stop issues the moves compensation holds (their ends as they are); the end of the program
+  // turns compensation off.
+  for (int m : v.m)
+    if (m == 0 || m == 1 || m == 2 || m == 30 || m == 60) {
+      if (!comp_.queue.empty() && comp_.offsetting())
+        comp_move_end(plane_point(comp_.tool, comp_.plane), 0);
+      comp_release();
+      if (m == 2 || m == 30) comp_.side = CompSide::Off, comp_.first = true;
+    }
   for (int m : v.m) {
     if (m == 29) rigid_tapping_ = true; // Fanuc/Haas rigid tapping mode for G84/G74
     if (m == 0) emit_simple(CanonKind::ProgramStop);

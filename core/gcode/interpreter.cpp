@@ -143,6 +143,19 @@ void Interpreter::emit(CanonCommand c) {
     c.start_known = known_axes_ == 7;
     known_axes_ |= axes_being_set_;
   }
+  // Cutter radius compensation holds a move until the next one shows its corner, and with it
+  // whatever comes after it (cutter_comp_moves.cpp).
+  if (comp_next_) {
+    CompQueue::Held held = std::move(*comp_next_);
+    comp_next_.reset();
+    held.command = std::move(c);
+    comp_.queue.hold(std::move(held));
+    return;
+  }
+  if (!comp_.queue.empty()) {
+    comp_.queue.hold({std::move(c), {}, 0});
+    return;
+  }
   sink_(c);
 }
 
@@ -272,6 +285,7 @@ InterpretResult Interpreter::run() {
     }
     pc_ = next_pc_;
   }
+  comp_release();
   if (!finished_ && error_reported_) {
     result_.completed = false;
   } else if (!finished_) {

@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "block.hpp"
+#include "cutter_comp.hpp"
+#include "cutter_comp_mode.hpp"
 #include "label_index.hpp"
 #include "parameters.hpp"
 
@@ -150,6 +152,27 @@ private:
   void set_coordinate_data(const BlockValues& v);
   void set_tool_data(const BlockValues& v);
 
+  // --- cutter radius compensation (cutter_comp_moves.cpp) -------------------------------------
+  void comp_on(const BlockValues& v, int code);
+  void comp_off(int column);
+  // The radius (mm) of tool `number` for G41/G42, if anything gives it.
+  std::optional<double> comp_radius_of(int number) const;
+  // LinuxCNC refuses what compensation cannot make: in its dialect, so does this interpreter.
+  bool comp_strict() const { return strict_ && dialect_.name == "linuxcnc"; }
+  // What compensation cannot make: an error where LinuxCNC is the control, else a warning; the
+  // moves run as programmed from the tool's place until G40.
+  void comp_problem(int column, const std::string& what);
+  // Issues every held move and command as it is (a stop, the end of the program).
+  void comp_release();
+  // Moves the held moves' ends to `p` and issues them; a problem with that goes to comp_problem.
+  bool comp_move_end(PlanePoint p, int column);
+  // A G0/G1 (`kind`) or G2/G3 (`arc`, programmed) under compensation: true when made here.
+  bool comp_straight(CanonKind kind, const Pose& end, int column);
+  bool comp_arc(const CanonCommand& arc, int column);
+  // A move compensation does not make (G28, G53, a cycle, a probe) with compensation on.
+  void comp_bypass(int column, const std::string& what);
+  void comp_hold(CanonCommand c, PlanePoint direction, double sweep);
+
   // --- canned cycles (canned_cycles.cpp) -----------------------------------------------------
   void canned_cycle(Motion cycle, const BlockValues& v);
 
@@ -245,6 +268,12 @@ private:
   bool error_past_cap_ = false;   // an error was kept past the diagnostics cap
   bool error_reported_ = false;   // an error, kept or not (options_.keep_diagnostics)
   int cutter_comp_ = 40;
+  CutterCompState comp_;
+  bool comp_motion_ = false;       // the move being made is a G0/G1/G2/G3 compensation may offset
+  int comp_column_ = 0;            // its column
+  std::set<int> g10_radius_tools_; // tools whose radius a G10 L1/L10/L11 R of the program gave
+  std::optional<CompModeHints> comp_hints_;    // read at the first G41/G42
+  std::optional<CompQueue::Held> comp_next_;   // the next command emitted is held with this
   bool arc_offsets_reversed_ = false;          // I/J/K read from the centre to the start
   std::size_t arcs_fitting_only_standard_ = 0; // I/J/K arcs that fit only the standard way
   int selected_tool_ = 0;

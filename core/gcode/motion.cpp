@@ -100,7 +100,14 @@ std::uint8_t Interpreter::named_axes(const BlockValues& v) {
 
 void Interpreter::straight(CanonKind kind, const Pose& end, std::string text,
                            std::uint8_t machine_axes) {
+  if (comp_.offsetting()) {
+    if (comp_motion_ && comp_straight(kind, end, comp_column_)) return;
+    if (!comp_motion_)
+      comp_bypass(comp_column_, "a move compensation does not offset (canned cycle, probe, "
+                                "spline, G33)");
+  }
   CanonCommand c = make(kind);
+  if (comp_.exit_from) c.start = *comp_.exit_from, comp_.exit_from.reset();
   c.end = end;
   c.text = std::move(text);
   c.machine_axes = machine_axes;
@@ -279,6 +286,11 @@ void Interpreter::arc(const BlockValues& v, bool clockwise) {
   c.centre_second = cs;
   c.rotation = clockwise ? -turns : turns;
   inverse_time_feed(arc_geometry(c).length, v);
+  if (comp_.offsetting()) {
+    if (comp_motion_ && comp_arc(c, col)) return;
+    if (!comp_motion_) comp_bypass(col, "an arc compensation does not offset");
+  }
+  if (comp_.exit_from) c.start = *comp_.exit_from, comp_.exit_from.reset();
   pos_ = end;
   emit(std::move(c));
 }
@@ -330,6 +342,8 @@ void Interpreter::spiral_warning(int column, double sf, double ss, double ef, do
 
 void Interpreter::go_home(const BlockValues& v, int base) {
   // With axis words: first to the intermediate point, then those axes home. Without: all axes.
+  // LinuxCNC refuses G28/G30 with compensation on.
+  comp_bypass(v.g_column(base == param::kG28 ? 280 : 300), "G28/G30");
   const Pose off = offset_total();
   Pose home_prog;
   for (int i = 0; i < 6; ++i) {
@@ -449,7 +463,10 @@ void Interpreter::set_tool_data(const BlockValues& v) {
     const double machine_z = pos_.z + g5x_[g5x_index_].z + g92_.z + tool_offset_z_;
     e.z_offset = machine_z - g5x_[g5x_index_].z - g92_.z - *v['z'] * unit();
   }
-  if (v.has('r')) e.diameter = 2 * *v['r'] * unit();
+  if (v.has('r')) {
+    e.diameter = 2 * *v['r'] * unit();
+    g10_radius_tools_.insert(tool);
+  }
 }
 
 } // namespace ncjoule::detail

@@ -199,16 +199,11 @@ TEST_CASE("units group: G20 reads inches, commands hold mm and print in inches")
   CHECK(format_canon(units[1]) == "USE_LENGTH_UNITS(CANON_UNITS_MM)");
 }
 
-TEST_CASE("cutter compensation group: G41/G42 warn with the column, moves as programmed") {
+TEST_CASE("cutter compensation group: G41/G42 with no radius known run as programmed") {
   const Toolpath p = run("G21 G0 X0 Y0\nG1 F100\nG41 D1 X5\nG40 X6\nG42 X7\nM2\n");
   CHECK(errors(p) == 0);
-  const auto w = with_severity(p, Severity::Warning);
-  REQUIRE(w.size() == 2);
-  CHECK(w[0].line == 3);
-  CHECK(w[0].column == 1);
-  CHECK(w[0].message.find("G41") != std::string::npos);
-  CHECK(w[1].line == 5);
-  CHECK(w[1].message.find("G42") != std::string::npos);
+  CHECK(warnings(p) == 0);
+  CHECK(p.result.comp_radius_unknown == std::set<int>{1});
   const auto m = moves(p);
   REQUIRE(m.size() == 4);
   CHECK(m[1] == "STRAIGHT_FEED(5.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)");

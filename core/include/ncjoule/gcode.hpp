@@ -16,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -283,6 +284,13 @@ struct InterpreterLimits {
   std::size_t max_arc_turns = 1'000'000;       // P of one arc (full turns of a helix)
 };
 
+// How a program's G41/G42 were posted. Control: the path is the part's contour and the control
+// offsets it by the radius of the tool the D word names (CAM "in control"). Wear: the path is
+// already the tool centre and the D register holds only a wear value (Fusion's "wear" and
+// "inverse wear", Mastercam's "wear" and "reverse wear"); that value is not known here and is
+// taken as 0, so the path runs as programmed.
+enum class CutterCompMode : std::uint8_t { Control, Wear };
+
 struct InterpreterOptions : InterpreterLimits {
   std::optional<Dialect> dialect; // empty: detect from the text
   // Detection found nothing: this dialect (the machine's control) rather than linuxcnc.
@@ -298,6 +306,15 @@ struct InterpreterOptions : InterpreterLimits {
   std::map<int, Pose> work_offsets;
   // The program starts in inches (a control set to inch at power-on) until G20/G21 says.
   bool start_inch = false;
+  // Cutter radius compensation (G41/G42): radii (mm) by tool number of tools described outside
+  // the tool table (CAM header comments, a job file, --tool), as the estimate resolves them. A
+  // D word's radius is the one a G10 L1 R of the program gave, else this, else the tool table's.
+  std::map<int, double> comp_radius_mm;
+  // How G41/G42 were posted: given, it holds whatever the program tells; empty, the program's own
+  // word decides (G41.2/G42.2, a CAM tool line saying "WEAR COMP"), else
+  // `default_cutter_compensation` (a machine's setting), else Control.
+  std::optional<CutterCompMode> cutter_compensation;
+  std::optional<CutterCompMode> default_cutter_compensation;
 };
 
 struct InterpretResult {
@@ -312,6 +329,9 @@ struct InterpretResult {
   std::size_t word_blocks = 0;
   bool program_end = false; // ended at M2/M30 or a closing '%', not at the end of the file
   bool units_given = false; // a G20/G21 (G70/G71, a Heidenhain header) set the units
+  // Tool numbers G41/G42 named (by D, or the tool in the spindle) whose radius nothing gave:
+  // those moves were made as programmed.
+  std::set<int> comp_radius_unknown;
   std::size_t commands = 0;
 };
 

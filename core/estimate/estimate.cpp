@@ -218,8 +218,25 @@ std::size_t default_memory_budget_bytes() {
   return budget;
 }
 
+// The estimate, G41/G42 offsetting by `comp_radii` (mm, by tool number; see below).
+static Estimate estimate_with(const SourceFile& source, const MachineProfile& machine,
+                              const EstimateOptions& options,
+                              const std::map<int, double>& comp_radii, bool radii_final);
+
+// Cutter radius compensation needs the radius of each tool a D word names: the job file's and
+// --tool's are known now; those the program's comments describe are known after the first pass,
+// which then runs again with them (only when a G41/G42 named such a tool).
 Estimate estimate_program(const SourceFile& source, const MachineProfile& machine,
                           const EstimateOptions& options) {
+  std::map<int, double> radii;
+  for (const auto& [number, tool] : options.tools)
+    if (tool.diameter_mm > 0) radii[number] = tool.radius();
+  return estimate_with(source, machine, options, radii, false);
+}
+
+static Estimate estimate_with(const SourceFile& source, const MachineProfile& machine,
+                              const EstimateOptions& options,
+                              const std::map<int, double>& comp_radii, bool radii_final) {
   Estimate e;
   e.file = source.path;
   if (options.progress) options.progress(0);
@@ -236,6 +253,7 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
     setup.work_offsets[index] = origin;
   interpreter.work_offsets = setup.work_offsets;
   interpreter.start_inch = setup.power_on_inch.value_or(false);
+  interpreter.comp_radius_mm = comp_radii;
   const bool offsets_given = !setup.work_offsets.empty();
 
   const std::size_t budget = options.removal.memory_budget_bytes
@@ -291,6 +309,24 @@ Estimate estimate_program(const SourceFile& source, const MachineProfile& machin
   scan.tool_comments.dialect = e.dialect;
   e.inch = scan.tool_comments.inch;
   std::map<int, Tool> described = described_tools(source, scan.tool_comments, options, found);
+  if (!radii_final) {
+    bool more = false;
+    for (int number : run.comp_radius_unknown)
+      if (auto it = described.find(number); it != described.end() && it->second.diameter_mm > 0)
+        more = true;
+    if (more) {
+      std::map<int, double> radii = comp_radii;
+      for (const auto& [number, tool] : described)
+        if (tool.diameter_mm > 0) radii.emplace(number, tool.radius());
+      return estimate_with(source, machine, options, radii, true);
+    }
+  }
+  for (int number : run.comp_radius_unknown)
+    found.push_back({Severity::Warning, source.path, 0, 0,
+                     "G41/G42 offset by the radius of tool " + std::to_string(number) +
+                         ", which nothing describes (tool table, CAM comments, job file, "
+                         "--tool): its moves are timed as programmed, on the part's contour "
+                         "rather than the tool centre"});
   add_diagnostics(e, std::move(found), source.path);
   std::vector<std::unique_ptr<RemovalSimulator>> removals; // one per setup
   if (options.simulate_removal) {

@@ -77,6 +77,16 @@ def _handles_dash(module):
     return '"-"' in source or "'-'" in source
 
 
+def _stock_box_mm(values):
+    """box:... of six lengths in mm (FreeCAD's internal unit), each value saying so: a program
+    posted in inches reads them right. Fixed point, never an exponent."""
+    words = []
+    for v in values:
+        text = ("%.6f" % v).rstrip("0").rstrip(".")
+        words.append(("0" if text in ("-0", "") else text) + "mm")
+    return "box:" + ",".join(words)
+
+
 def _job_stock(objectslist):
     """box:... of the job's stock, when the objects belong to a job that has one."""
     try:
@@ -85,7 +95,7 @@ def _job_stock(objectslist):
             job = PathUtils.findParentJob(obj)
             if job is not None and getattr(job, "Stock", None) is not None:
                 b = job.Stock.Shape.BoundBox
-                return "box:%g,%g,%g,%g,%g,%g" % (b.XMin, b.YMin, b.ZMin, b.XMax, b.YMax, b.ZMax)
+                return _stock_box_mm((b.XMin, b.YMin, b.ZMin, b.XMax, b.YMax, b.ZMax))
     except Exception:
         pass
     return None

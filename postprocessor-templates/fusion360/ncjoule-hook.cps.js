@@ -2,7 +2,7 @@
   ncjoule hook for Autodesk post processors (Fusion, Inventor CAM, HSM): append this whole file
   to the end of a vendor .cps post. After the post has written its program(s), the hook runs
 
-      ncjoule annotate --machine=<profile> --in-place [--stock=<text>] [<extra arguments>] -- <file>
+      ncjoule annotate --machine=<profile> --in-place --stock=<the post's workpiece> [<extra arguments>] -- <file>
 
   on every NC file the post wrote, so each block carries its predicted time, MRR, power and
   energy as a comment. See README.md next to this file.
@@ -15,8 +15,10 @@
       ncjouleEnable     annotate the output (on/off)
       ncjoulePath       the ncjoule program ("ncjoule" finds it on the PATH)
       ncjouleMachine    the machine profile (.toml); a relative path is looked up next to the post
-      ncjouleStock      the stock, as ncjoule's --stock text (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX
-                        or an .stl file); empty: the box of the cutting moves
+      ncjouleStock      a stock in place of the setup's workpiece, as ncjoule's --stock text
+                        (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an .stl file); empty: the
+                        workpiece the post engine knows (getWorkpiece(), in the program's units),
+                        and without one the box of the cutting moves
       ncjouleArguments  further arguments for `ncjoule annotate` (e.g. --dialect fanuc), split at
                         blanks and never evaluated
   - an onTerminate() that first runs the post's own onTerminate() (if it has one) and then
@@ -58,7 +60,7 @@ var ncjouleHookPropertyDefinitions = {
   },
   ncjouleStock: {
     title: "ncjoule: stock",
-    description: "Stock as ncjoule's --stock text: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX (mm) or an .stl file. Empty: the box of the cutting moves.",
+    description: "A stock in place of the setup's workpiece, as ncjoule's --stock text: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an .stl file. Empty: the setup's workpiece.",
     type: "string",
     value: "",
     scope: "post"
@@ -403,10 +405,48 @@ var ncjouleExitReasons = {
   4: "internal error"
 };
 
+// A number as ncjoule reads it: fixed point (never an exponent), no trailing zeros.
+function ncjouleNumber(value) {
+  var text = value.toFixed(6).replace(/0+$/, "").replace(/\.$/, "");
+  return text == "-0" ? "0" : text;
+}
+
+// The setup's workpiece (the stock the post engine knows) as ncjoule's --stock text, each value
+// with its unit: the post engine gives it in the program's units (the post's `unit`, IN or MM).
+// "" when the engine has none, or it is empty or not finite.
+function ncjouleWorkpieceStock() {
+  try {
+    if (typeof getWorkpiece != "function") {
+      return "";
+    }
+    var box = getWorkpiece();
+    if (!box || !box.lower || !box.upper) {
+      return "";
+    }
+    var values = [box.lower.x, box.lower.y, box.lower.z, box.upper.x, box.upper.y, box.upper.z];
+    for (var i = 0; i < values.length; ++i) {
+      if (typeof values[i] != "number" || !isFinite(values[i])) {
+        return "";
+      }
+    }
+    if (!(values[3] > values[0] && values[4] > values[1] && values[5] > values[2])) {
+      return "";
+    }
+    var inch = typeof unit != "undefined" && typeof IN != "undefined" && unit == IN;
+    var words = [];
+    for (var k = 0; k < values.length; ++k) {
+      words.push(ncjouleNumber(values[k]) + (inch ? "in" : "mm"));
+    }
+    return "box:" + words.join(",");
+  } catch (e) {
+    return "";
+  }
+}
+
 // Annotates one file in place; true when it was annotated. Never throws.
 function ncjouleAnnotateFile(program, profile, file) {
   var words = ["annotate", "--machine=" + profile, "--in-place"];
-  var stock = String(ncjouleProperty("ncjouleStock") || "");
+  var stock = String(ncjouleProperty("ncjouleStock") || "") || ncjouleWorkpieceStock();
   if (stock) {
     words.push("--stock=" + stock);
   }

@@ -185,6 +185,22 @@ def main():
 
     reference = plain("linuxcnc", objects, folder)
 
+    def job_stock_in_mm():
+        # FreeCAD's stock box is in mm whatever the post writes: each value says so, so that an
+        # inch program reads it right; fixed point, no exponent ncjoule would refuse.
+        box = ncjoule_post._stock_box_mm((0.0, -0.0, -25.4, 101.6, 76.2000004, 12345678.5))
+        check(box == "box:0mm,0mm,-25.4mm,101.6mm,76.2mm,12345678.5mm", box)
+        prog = os.path.join(folder, "inch.nc")
+        with open(prog, "w") as f:
+            f.write("G20 G90\nT1 M6\nS8000 M3\nG0 X0.5 Y0.5 Z0.2\nG1 Z-0.1 F10\nG1 X3.5 F40\nG0 Z0.2\nM30\n")
+        r = subprocess.run([NCJOULE, "estimate", "--machine=" + MACHINE, "--tool=1:flat:0.25in",
+                            "--stock=" + ncjoule_post._stock_box_mm((0, 0, -25.4, 101.6, 76.2, 0)), prog],
+                           stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        out = r.stdout.decode()
+        check(r.returncode == 0, "estimate with the job's stock failed: %s" % r.stderr.decode())
+        check("mix-up" not in r.stderr.decode(), "an mm stock on an inch program was misread")
+        check("0.000,0.000,-25.400" in out, "the stock is not the job's box in mm:\n" + out)
+
     def missing_ncjoule():
         out = os.path.join(folder, "missing.nc")
         a = args("linuxcnc").replace("--ncjoule=" + NCJOULE, "--ncjoule=" + os.path.join(folder, "nope"))
@@ -266,6 +282,7 @@ def main():
     run_case("a file named like an option (-x.nc) is annotated", option_like_name)
     run_case("extra arguments: split, '--' and --follow-symlinks left out", extra_arguments)
     run_case("the tool controller's tool shape and size reach ncjoule", controller_geometry)
+    run_case("the job's stock goes to ncjoule in mm, for programs in either unit", job_stock_in_mm)
     run_case("a missing ncjoule only warns", missing_ncjoule)
     run_case("a failing ncjoule only warns", failing_ncjoule)
     run_case("--no-ncjoule posts without annotating", turned_off)

@@ -121,6 +121,38 @@ test("a real posted program is annotated in place, after the post's own onTermin
   assert.deepStrictEqual(argv, ["annotate", "--machine=" + MACHINE, "--in-place", "--stock=" + STOCK, "--", out]);
 });
 
+test("without a stock property the setup's workpiece is the stock, with the program's unit", () => {
+  const dir = tempDir();
+  const out = path.join(dir, "1002.ngc");
+  fs.copyFileSync(PROGRAM_A, out);
+  const engine = makeEngine(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE, ncjouleStock: ""});
+  engine.readText = (p) => fs.readFileSync(p, "latin1");
+  // The post engine's workpiece: a box 4 x 3 x 1 in, Z0 on its top (unit is IN).
+  engine.IN = 1;
+  engine.MM = 0;
+  engine.unit = 1;
+  engine.getWorkpiece = () => ({lower: {x: -0.25, y: 0, z: -1}, upper: {x: 3.75, y: 3.0000001, z: 0}});
+  const ctx = vm.createContext(engine);
+  vm.runInContext(withReader(MODERN_POST) + "\n" + HOOK, ctx, {filename: "modern.cps"});
+  ctx.onOpen();
+  ctx.onClose();
+  ctx.onTerminate();
+  assert.deepStrictEqual(ctx.record.warnings, []);
+  const argv = ctx.record.executed[0][2];
+  assert.ok(argv.includes("--stock=box:-0.25in,0in,-1in,3.75in,3in,0in"), argv.join(" "));
+  // The same workpiece in a metric post, and an empty workpiece (none set) gives no --stock.
+  engine.unit = 0;
+  ctx.record.executed.length = 0;
+  fs.copyFileSync(PROGRAM_A, out);
+  ctx.onTerminate();
+  assert.ok(ctx.record.executed[0][2].includes("--stock=box:-0.25mm,0mm,-1mm,3.75mm,3mm,0mm"));
+  engine.getWorkpiece = () => ({lower: {x: 0, y: 0, z: 0}, upper: {x: 0, y: 0, z: 0}});
+  ctx.record.executed.length = 0;
+  fs.copyFileSync(PROGRAM_A, out);
+  ctx.onTerminate();
+  assert.ok(!ctx.record.executed[0][2].some((a) => a.startsWith("--stock")));
+});
+
 test("the post's properties are kept and the hook's added beside them", () => {
   const dir = tempDir();
   const out = path.join(dir, "p.ngc");

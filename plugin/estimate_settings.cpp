@@ -196,6 +196,9 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
     print_diagnostics(job_diagnostics);
     if (!job) return exit_code = kInputError, std::nullopt;
     if (job->stock) options.stock = job->stock;
+    options.setup_stocks = job->setup_stocks;
+    options.work_offsets = job->work_offsets;
+    options.cutter_compensation = job->cutter_compensation;
     options.tools = job->tools;
     options.material = job->material;
   }

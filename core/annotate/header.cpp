@@ -105,6 +105,59 @@ std::vector<Group> operations(const Estimate& estimate) {
   return out;
 }
 
+// A box as X0,Y0,Z0,X1,Y1,Z1 at `scale` (1 for mm, 1/25.4 for inches), 3 or 4 decimals.
+std::string box_text(const Box3& b, double scale, int decimals) {
+  std::string out;
+  for (double v : {b.xmin, b.ymin, b.zmin, b.xmax, b.ymax, b.zmax}) {
+    if (!out.empty()) out += ',';
+    out += format_significant(v * scale, 12, decimals);
+  }
+  return out;
+}
+
+// The stock each setup cuts and where it comes from: a stock guessed from the cuts makes every
+// volume and MRR a guess too, and says so before them.
+std::vector<Group> stocks(const Estimate& estimate) {
+  std::vector<Group> out;
+  for (std::size_t k = 0; k < estimate.setups.size(); ++k) {
+    const SetupSummary& setup = estimate.setups[k];
+    if (!setup.stock_box) continue;
+    Group g = make_group("STOCK");
+    if (estimate.setups.size() > 1) g.fields.push_back(field("SETUP", std::to_string(k + 1)));
+    g.fields.push_back(field("BOX_MM", box_text(*setup.stock_box, 1, 3)));
+    if (estimate.inch) g.fields.push_back(field("BOX_IN", box_text(*setup.stock_box, 1 / 25.4, 4)));
+    const bool from_program = setup.stock_origin.rfind("the program's", 0) == 0;
+    const char* source = setup.stock_guessed ? "GUESSED FROM CUTS"
+                         : from_program      ? "FROM CAM COMMENTS"
+                                             : "GIVEN";
+    for (std::string_view rest = source; !rest.empty();) { // one field a word: lines wrap
+      const std::size_t blank = std::min(rest.find(' '), rest.size());
+      g.fields.emplace_back(rest.substr(0, blank));
+      rest.remove_prefix(std::min(blank + 1, rest.size()));
+    }
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
+// The setups of a program with more than one: where each starts, why, and its totals.
+std::vector<Group> setups(const Estimate& estimate) {
+  std::vector<Group> out;
+  if (estimate.setups.size() < 2) return out;
+  for (std::size_t k = 0; k < estimate.setups.size(); ++k) {
+    const SetupSummary& setup = estimate.setups[k];
+    Group g = make_group("SETUP");
+    g.fields.push_back(field("N", std::to_string(k + 1)));
+    g.fields.push_back(field("LINE", std::to_string(setup.first_line + 1)));
+    g.fields.push_back(field("T", format_duration(setup.time_s)));
+    g.fields.push_back(field("E", format_si(setup.energy_j, "J")));
+    g.fields.push_back(field("VOL_MM3", format_significant(setup.removed_mm3, 4, 3)));
+    g.fields.push_back(field("FROM", safe_token(setup.reason, 48)));
+    out.push_back(std::move(g));
+  }
+  return out;
+}
+
 Group components(const Estimate& estimate) {
   Group g = make_group("ENERGY");
   for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
@@ -260,6 +313,10 @@ std::vector<std::string> summary_lines(const Estimate& estimate, const MachinePr
   lines.reserve(32);
   wrap(totals(estimate), style, lines);
   wrap(time_split(estimate), style, lines);
+  for (const Group& g : stocks(estimate))
+    wrap(g, style, lines);
+  for (const Group& g : setups(estimate))
+    wrap(g, style, lines);
   wrap(components(estimate), style, lines);
   for (const Group& g : operations(estimate))
     wrap(g, style, lines);

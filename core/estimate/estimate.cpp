@@ -9,6 +9,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "cam_stock.hpp"
 #include "long_arc_check.hpp"
 #include "machine_moves.hpp"
 #include "ncjoule/log.hpp"
@@ -75,9 +76,11 @@ struct ProgramScan {
 
 // The stock of setup `k`: the first setup's is the one given (--stock, the job file's), later
 // ones the job file's [[setup]] entries; a setup given none is the box of its own cuts.
-StockSpec setup_stock(const EstimateOptions& options, std::size_t k, bool inch) {
+// The first setup without a stock given takes the one the program's CAM comments state.
+StockSpec setup_stock(const EstimateOptions& options, std::size_t k, bool inch,
+                      const std::optional<StockSpec>& from_comments) {
   const std::optional<StockSpec>& given =
-      k == 0 ? options.stock
+      k == 0 ? (options.stock ? options.stock : from_comments)
              : (k - 1 < options.setup_stocks.size() ? options.setup_stocks[k - 1] : std::nullopt);
   return given ? given->in_mm(inch) : StockSpec{};
 }
@@ -253,6 +256,8 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
     setup.work_offsets[index] = origin;
   interpreter.work_offsets = setup.work_offsets;
   interpreter.start_inch = setup.power_on_inch.value_or(false);
+  interpreter.cutter_compensation = options.cutter_compensation;
+  interpreter.default_cutter_compensation = setup.cutter_compensation;
   interpreter.comp_radius_mm = comp_radii;
   const bool offsets_given = !setup.work_offsets.empty();
 
@@ -365,9 +370,12 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
     removal_options.memory_budget_bytes =
         std::max(removal_options.memory_budget_bytes / scan.extents.size(), std::size_t(16) << 20);
     try {
+      const std::optional<StockSpec> from_comments =
+          options.stock ? std::nullopt
+                        : estimate_detail::stock_from_cam_comments(source, e.dialect);
       for (std::size_t k = 0; k < scan.extents.size(); ++k) {
         removals.push_back(std::make_unique<RemovalSimulator>(
-            setup_stock(options, k, e.inch),
+            setup_stock(options, k, e.inch, from_comments),
             removal_options.mirror_z ? mirrored[k] : scan.extents[k], used, removal_options));
         e.positioning_moves += scan.extents[k].positioning_moves();
       }

@@ -1,12 +1,14 @@
-// Job files: the stock and the tool table of a job, in TOML (see JobFile in estimate.hpp).
-// Every error names the file, the line and column, and the key.
+// Job files: the stocks, work offsets and tool table of a job, in TOML (see JobFile in
+// estimate.hpp). Every error names the file, the line and column, and the key.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <toml++/toml.h>
 
 #include "ncjoule/estimate.hpp"
+#include "ncjoule/machine.hpp"
 #include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
 
@@ -53,6 +55,44 @@ struct JobReader {
       return std::nullopt;
     }
     return node->value<double>();
+  }
+
+  // `stock` (a box or STL spec) or `stock_stl` (a path) of `table`, keys named after `where`.
+  std::optional<StockSpec> read_stock(const toml::table& table, const std::string& where,
+                                      LengthUnit units) {
+    const toml::node* stock = table.get("stock");
+    const toml::node* stock_stl = table.get("stock_stl");
+    if (stock && stock_stl) {
+      error(stock_stl, where + "stock_stl", "give either stock or stock_stl, not both");
+    } else if (stock) {
+      if (!stock->is_string()) {
+        error(stock, where + "stock", "must be a string such as \"box:0,0,-20,100,60,0\"");
+        return std::nullopt;
+      }
+      // The value's first character is just after the opening quote.
+      const TextOrigin origin{path, int(stock->source().begin.line),
+                              int(stock->source().begin.column) + 1};
+      std::vector<Diagnostic> problems;
+      if (auto spec = parse_stock_spec(*stock->value<std::string>(), &problems, origin, units)) {
+        if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = resolve(spec->stl_path);
+        return spec;
+      }
+      for (Diagnostic& d : problems)
+        d.message = where + "stock: " + d.message;
+      add(problems);
+    } else if (stock_stl) {
+      if (!stock_stl->is_string() || stock_stl->value<std::string>()->empty()) {
+        error(stock_stl, where + "stock_stl", "must be the path of an STL file");
+        return std::nullopt;
+      }
+      StockSpec spec;
+      spec.kind = StockSpec::Kind::Stl;
+      spec.stl_path = resolve(*stock_stl->value<std::string>());
+      spec.stl_units = units;
+      spec.origin = path;
+      return spec;
+    }
+    return std::nullopt;
   }
 
   void read_tool(const toml::node& node, std::size_t index, JobFile& job) {
@@ -131,7 +171,8 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
 
   for (const auto& [key, value] : document)
     if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "tool" &&
-        key.str() != "material" && key.str() != "units")
+        key.str() != "material" && key.str() != "units" && key.str() != "setup" &&
+        key.str() != "work_offsets_mm" && key.str() != "cutter_compensation")
       reader.say(Severity::Warning, &value, std::string(key.str()), "unknown key, ignored");
 
   // The unit of the stock's values written without one; none: the program's (G20/G21).
@@ -146,40 +187,63 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
       reader.error(u, "units", "must be \"mm\" or \"in\"");
   }
 
-  const toml::node* stock = document.get("stock");
-  const toml::node* stock_stl = document.get("stock_stl");
-  if (stock && stock_stl) {
-    reader.error(stock_stl, "stock_stl", "give either stock or stock_stl, not both");
-  } else if (stock) {
-    if (!stock->is_string()) {
-      reader.error(stock, "stock", "must be a string such as \"box:0,0,-20,100,60,0\"");
+  if (const toml::node* setups = document.get("setup")) {
+    const toml::array* list = setups->as_array();
+    if (!list || !list->is_array_of_tables()) {
+      reader.error(setups, "setup", "must be an array of tables ([[setup]] entries)");
+    } else if (document.get("stock") || document.get("stock_stl")) {
+      reader.error(setups, "setup",
+                   "give the first setup's stock in its [[setup]] entry, not also as stock");
     } else {
-      // The value's first character is just after the opening quote.
-      const TextOrigin origin{reader.path, int(stock->source().begin.line),
-                              int(stock->source().begin.column) + 1};
-      std::vector<Diagnostic> problems;
-      if (auto spec = parse_stock_spec(*stock->value<std::string>(), &problems, origin, units)) {
-        if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = reader.resolve(spec->stl_path);
-        job.stock = spec;
-      } else {
-        for (Diagnostic& d : problems)
-          d.message = "stock: " + d.message;
-        reader.add(problems);
+      for (std::size_t k = 0; k < list->size(); ++k) {
+        const toml::table& entry = *list->get(k)->as_table();
+        const std::string where = "setup[" + std::to_string(k + 1) + "].";
+        for (const auto& [key, value] : entry)
+          if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "name")
+            reader.say(Severity::Warning, &value, where + std::string(key.str()),
+                       "unknown key, ignored");
+        std::optional<StockSpec> stock = reader.read_stock(entry, where, units);
+        if (k == 0)
+          job.stock = std::move(stock);
+        else
+          job.setup_stocks.push_back(std::move(stock));
       }
     }
-  } else if (stock_stl) {
-    if (!stock_stl->is_string() || stock_stl->value<std::string>()->empty()) {
-      reader.error(stock_stl, "stock_stl", "must be the path of an STL file");
-    } else {
-      StockSpec spec;
-      spec.kind = StockSpec::Kind::Stl;
-      spec.stl_path = reader.resolve(*stock_stl->value<std::string>());
-      spec.stl_units = units;
-      spec.origin = reader.path;
-      job.stock = spec;
+  } else {
+    job.stock = reader.read_stock(document, "", units);
+  }
+
+  if (const toml::node* node = document.get("work_offsets_mm")) {
+    const toml::table* table = node->as_table();
+    if (!table) reader.error(node, "work_offsets_mm", "must be a table: G54 = [X, Y, Z], ...");
+    static const toml::table kNone;
+    for (const auto& [name, value] : table ? *table : kNone) {
+      const std::string where = "work_offsets_mm." + std::string(name.str());
+      const int index = work_offset_index(name.str());
+      const toml::array* xyz = value.as_array();
+      std::optional<double> v[3];
+      for (std::size_t i = 0; xyz && xyz->size() == 3 && i < 3; ++i)
+        if (auto n = xyz->get(i)->value<double>(); n && std::isfinite(*n)) v[i] = n;
+      if (index == 0)
+        reader.error(&value, where, "names no work offset: G54 to G59, G59.1 to G59.3");
+      else if (!v[0] || !v[1] || !v[2])
+        reader.error(&value, where, "must be [X, Y, Z], the origin's machine coordinates in mm");
+      else
+        job.work_offsets[index] = Pose{*v[0], *v[1], *v[2], 0, 0, 0};
     }
   }
 
+  if (const toml::node* mode = document.get("cutter_compensation")) {
+    const std::string name = mode->is_string() ? to_lower(*mode->value<std::string>()) : "";
+    if (name == "control")
+      job.cutter_compensation = CutterCompMode::Control;
+    else if (name == "wear")
+      job.cutter_compensation = CutterCompMode::Wear;
+    else
+      reader.error(mode, "cutter_compensation",
+                   "must be \"control\" (G41/G42 offset the part contour) or \"wear\" (the "
+                   "path is the tool centre)");
+  }
   if (const toml::node* material = document.get("material")) {
     if (!material->is_string() || !find_material(*material->value<std::string>()))
       reader.error(material, "material",

@@ -4,16 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ncjoule/machine.hpp"
+
 namespace ncjoule::estimate_detail {
 namespace {
 
 constexpr std::uint8_t kZ = 4;
-
-std::string offset_name(int index) {
-  static const char* const names[] = {"G54", "G55",   "G56",   "G57",  "G58",
-                                      "G59", "G59.1", "G59.2", "G59.3"};
-  return index >= 1 && index <= 9 ? names[index - 1] : "G54";
-}
 
 } // namespace
 
@@ -40,7 +36,8 @@ CanonCommand MachineMoves::view(const CanonCommand& command) {
       warned_offsets_ = true;
       diagnostics_.push_back(
           {Severity::Warning, file_, c.line + 1, 0,
-           "the program switches from " + offset_name(first_offset_) + " to " + offset_name(index) +
+           "the program switches from " + work_offset_name(first_offset_) + " to " +
+               work_offset_name(index) +
                " here; nothing describes where they are (work_offsets_mm under [setup] in the "
                "profile, or in a job file): both are taken at one place, so no travel between "
                "them is timed"});

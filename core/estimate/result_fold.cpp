@@ -48,7 +48,7 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
       expected_commands_(expected_commands), lines_(source.lines.size()),
       energy_(power, options.energy), operations_(source, dialect) {
   for (const SetupStart& start : starts)
-    setup_totals_.push_back(SetupSummary{start.line, start.reason, {}, true, 0, 0, 0});
+    setup_totals_.push_back(SetupSummary{start.line, start.reason});
   if (setup_totals_.empty()) setup_totals_.push_back(SetupSummary{0, "the program's start"});
 }
 
@@ -247,7 +247,10 @@ void ResultFolder::finish(double total_s) {
   for (std::size_t k = 0; k < setup_totals_.size() && k < removals_.size(); ++k) {
     const RemovalResult r = removals_[k]->summary();
     setup_totals_[k].stock = r.stock_description;
-    setup_totals_[k].stock_guessed = r.stock_description.find("(default") != std::string::npos;
+    setup_totals_[k].stock_guessed = r.stock_source != RemovalResult::StockSource::Given;
+    setup_totals_[k].stock_origin = r.stock_origin;
+    if (r.stock_source != RemovalResult::StockSource::None)
+      setup_totals_[k].stock_box = r.stock_box;
   }
   out_.setups = setup_totals_;
   out_.series.power_w = power_.result();

@@ -3,18 +3,10 @@
 #include <algorithm>
 #include <limits>
 
+#include "ncjoule/machine.hpp"
 #include "ncjoule/text.hpp"
 
 namespace ncjoule::estimate_detail {
-namespace {
-
-std::string offset_name(int index) {
-  static const char* const names[] = {"G54", "G55",   "G56",   "G57",  "G58",
-                                      "G59", "G59.1", "G59.2", "G59.3"};
-  return index >= 1 && index <= 9 ? names[index - 1] : "G54";
-}
-
-} // namespace
 
 SetupScan::SetupScan(const SourceFile& source, const Dialect& dialect)
     : source_(source), dialect_(dialect) {
@@ -61,7 +53,7 @@ void SetupScan::add(const CanonCommand& c, std::size_t index) {
     if (stopped_ && work_offset_ != old) {
       starts_.push_back({stop_index_ + 1, c.line,
                          stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then " +
-                             offset_name(work_offset_)});
+                             work_offset_name(work_offset_)});
       stopped_ = false;
     }
     return;

@@ -3,19 +3,30 @@
 
 #include "sections.hpp"
 
-namespace ncjoule::profile_detail {
-namespace {
+namespace ncjoule {
 
-// "G54" .. "G59", "G59.1" .. "G59.3" -> 1 .. 9; 0 when the name is none of them.
-int work_offset_index(std::string name) {
-  for (char& c : name)
+namespace {
+constexpr const char* kWorkOffsetNames[] = {"G54", "G55",   "G56",   "G57",  "G58",
+                                            "G59", "G59.1", "G59.2", "G59.3"};
+} // namespace
+
+int work_offset_index(std::string_view name) {
+  std::string upper(name);
+  for (char& c : upper)
     c = char(std::toupper(static_cast<unsigned char>(c)));
-  static const char* const names[] = {"G54", "G55",   "G56",   "G57",  "G58",
-                                      "G59", "G59.1", "G59.2", "G59.3"};
   for (int k = 0; k < 9; ++k)
-    if (name == names[k]) return k + 1;
+    if (upper == kWorkOffsetNames[k]) return k + 1;
   return 0;
 }
+
+std::string work_offset_name(int index) {
+  return index >= 1 && index <= 9 ? kWorkOffsetNames[index - 1] : "G54";
+}
+
+} // namespace ncjoule
+
+namespace ncjoule::profile_detail {
+namespace {
 
 // An array of `count` finite numbers, or the reason it is not.
 std::optional<std::vector<double>> numbers(const toml::node* node, std::size_t count) {
@@ -36,7 +47,7 @@ std::map<int, Pose> read_work_offsets(const toml::table& table, const TableReade
                                       std::string_view key) {
   std::map<int, Pose> offsets;
   for (const auto& [name, value] : table) {
-    const int index = work_offset_index(std::string(name.str()));
+    const int index = work_offset_index(name.str());
     const std::string where = std::string(key) + "." + std::string(name.str());
     if (index == 0) owner.fail(where, "names no work offset: G54 to G59, G59.1 to G59.3");
     const auto xyz = numbers(&value, 3);
@@ -60,6 +71,16 @@ WorkSetup read_setup(TableReader t, std::vector<std::string>& sources) {
     else
       t.fail("power_on_units", "must be \"mm\" or \"inch\" (the units a program that sets "
                                "neither G20 nor G21 runs in)");
+  }
+  if (const auto mode = t.optional_string("cutter_compensation")) {
+    if (*mode == "control")
+      setup.cutter_compensation = CutterCompMode::Control;
+    else if (*mode == "wear")
+      setup.cutter_compensation = CutterCompMode::Wear;
+    else
+      t.fail("cutter_compensation",
+             "must be \"control\" (G41/G42 offset the part contour by the tool radius) or "
+             "\"wear\" (the path is already the tool centre; G41/G42 add only a wear value)");
   }
   if (const toml::node* node = t.raw("work_offsets_mm")) {
     const toml::table* table = node->as_table();

@@ -98,7 +98,10 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   case StockSpec::Kind::Box: {
     Box3 box = spec.box;
     if (options.mirror_z) box.zmin = -spec.box.zmax, box.zmax = -spec.box.zmin;
-    stock_ = make_box_stock(box, format_box(spec.box) + " (given)");
+    // A stock the program's comments state says so; others are given by the user.
+    const bool from_program = spec.origin.rfind("the program's", 0) == 0;
+    stock_ = make_box_stock(box, format_box(spec.box) +
+                                     (from_program ? " (from " + spec.origin + ")" : " (given)"));
     break;
   }
   case StockSpec::Kind::Stl: {
@@ -139,14 +142,22 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
       totals_.stock_description = "none (no stock given, and " + std::string(why) + ")";
       return;
     }
-    stock_ = make_box_stock(*box, format_box(*box) +
-                                      " (default: bounding box of the cutting moves, XY widened "
-                                      "by the tool radius, Z from the lowest cut up to the "
-                                      "highest level at which a cutting move travels in XY)");
+    stock_ = make_box_stock(
+        *box, format_box(*box) +
+                  " (guessed, no stock given: bounding box of the cutting moves, XY widened "
+                  "by the tool radius, Z from the lowest cut up to the "
+                  "highest level at which a cutting move travels in XY)");
     break;
   }
   }
   totals_.stock_description = stock_->description();
+  totals_.stock_source = spec.kind == StockSpec::Kind::Default ? RemovalResult::StockSource::Guessed
+                                                               : RemovalResult::StockSource::Given;
+  totals_.stock_origin = spec.origin;
+  totals_.stock_box = stock_->bounds();
+  if (options.mirror_z)
+    totals_.stock_box.zmin = -stock_->bounds().zmax,
+    totals_.stock_box.zmax = -stock_->bounds().zmin;
   if (options.mirror_z)
     totals_.stock_description += "; Z mirrored (+Z points into the work): the program's Z" +
                                  format_mm3(-stock_->bounds().zmax) + " is the stock's top, Z" +

@@ -90,12 +90,25 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
     return fail("tool type '" + std::string(f[1]) +
                     "' is not one of flat, ball, bullnose, drill, chamfer",
                 f[1]);
+  // Which fields are lengths (mm, or with their unit: 0.25in): the diameter, a bull nose's
+  // corner radius, a chamfer mill's tip diameter; the others are angles.
+  const bool length_field[4] = {true, *shape == ToolShape::BullNose, *shape == ToolShape::Chamfer,
+                                false};
   double v[4] = {0, 0, 0, 0};
   for (std::size_t k = 2; k < f.size(); ++k) {
-    const std::optional<double> value = parse_number(f[k]);
-    if (k - 2 >= 4 || !value)
-      return fail("tool value '" + std::string(f[k]) + "' is not a number", f[k]);
-    v[k - 2] = *value;
+    if (k - 2 >= 4) return fail("tool value '" + std::string(f[k]) + "' is one too many", f[k]);
+    if (length_field[k - 2]) {
+      const auto length = parse_length(f[k]);
+      if (!length)
+        return fail("tool value '" + std::string(f[k]) +
+                        "' is not a length (a number in mm, or with its unit: 0.25in, 6mm)",
+                    f[k]);
+      v[k - 2] = length->second == LengthUnit::Inch ? length->first * 25.4 : length->first;
+    } else {
+      const std::optional<double> value = parse_number(f[k]);
+      if (!value) return fail("tool value '" + std::string(f[k]) + "' is not a number", f[k]);
+      v[k - 2] = *value;
+    }
   }
   const std::size_t extras = f.size() - 3;
   fields.diameter_mm = v[0];

@@ -38,6 +38,10 @@ ProgramTotals program_totals(const Estimate& e) {
   t.currency = e.energy.currency;
   t.components_j = e.energy.components_j;
   t.air_cut_s = e.time.air_cut_s;
+  t.setups = std::max<std::size_t>(e.setups.size(), 1);
+  t.stock_guessed =
+      e.removal.has_value() && std::any_of(e.setups.begin(), e.setups.end(),
+                                           [](const SetupSummary& s) { return s.stock_guessed; });
   t.volumes_known = e.removal.has_value() && e.unsimulated_tools.empty();
   return t;
 }
@@ -59,6 +63,29 @@ std::vector<std::string> comparison_warnings(const std::vector<RankedProgram>& r
     out.push_back("the volume " + unknown +
                   " removes is not known (material removal off, or a tool nothing describes): "
                   "the ranking leaves its cutting energy out");
+  // Stocks guessed from each program's own cuts differ with the toolpaths: the same part from
+  // the same stock needs the stock given.
+  std::string guessed;
+  for (const RankedProgram& r : ranked)
+    if (r.totals.stock_guessed)
+      guessed +=
+          (guessed.empty() ? "" : ", ") + std::filesystem::path(r.totals.file).filename().string();
+  if (!guessed.empty() && ranked.size() > 1)
+    out.push_back("the stock of " + guessed +
+                  " is guessed from its own cutting moves: give the job's stock (--stock or a job "
+                  "file) so that every alternative cuts the same one");
+  std::string setup_counts;
+  for (const RankedProgram& r : ranked)
+    if (r.totals.setups != ranked.front().totals.setups) setup_counts = "differ";
+  if (!setup_counts.empty()) {
+    std::string list;
+    for (const RankedProgram& r : ranked)
+      list += (list.empty() ? "" : ", ") +
+              std::filesystem::path(r.totals.file).filename().string() + " " +
+              std::to_string(r.totals.setups);
+    out.push_back("the alternatives machine the part in different numbers of setups (" + list +
+                  "): the extra clampings' handling time is not in the estimate");
+  }
   // 1% (and 1 mm^3) apart: grids and tool approximations differ by less on the same part.
   if (high > 0 && high - low > std::max(1.0, 0.01 * high)) {
     std::string list;

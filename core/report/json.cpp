@@ -142,6 +142,32 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
     w.field("z_mirrored", removal->z_mirrored);
     w.end_object();
   }
+  // The setups (one per clamping of the part), each with its stock and where that came from.
+  w.key("setups");
+  w.begin_array();
+  for (const SetupSummary& setup : e.setups) {
+    w.begin_object();
+    w.field("first_line", setup.first_line + 1);
+    w.field("reason", setup.reason);
+    w.field("time_s", setup.time_s);
+    w.field("energy_j", setup.energy_j);
+    w.field("removed_mm3", setup.removed_mm3);
+    w.field("stock", setup.stock.empty() ? std::string("not simulated") : setup.stock);
+    w.field("stock_source", !setup.stock_box                                    ? "none"
+                            : setup.stock_guessed                               ? "guessed"
+                            : setup.stock_origin.rfind("the program's", 0) == 0 ? "program"
+                                                                                : "given");
+    if (setup.stock_box) {
+      const Box3& b = *setup.stock_box;
+      w.key("stock_box_mm");
+      w.begin_array();
+      for (double v : {b.xmin, b.ymin, b.zmin, b.xmax, b.ymax, b.zmax})
+        w.value(v);
+      w.end_array();
+    }
+    w.end_object();
+  }
+  w.end_array();
   w.key("tools");
   w.begin_array();
   for (const auto& [number, tool] : e.tools) {

@@ -84,19 +84,21 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
   std::printf("%zu alternatives on %s, least energy first\n", ranked.size(), machine.name.c_str());
   for (const std::string& warning : comparison_warnings(ranked))
     std::printf("warning: %s\n", warning.c_str());
-  std::printf("\n #  %-*s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n", static_cast<int>(width),
-              "program", "time", "air cut", "energy kJ", "kWh", "mm3", "SEC J/mm3", "CO2 g",
-              ("cost " + currency).c_str(), "energy vs best", "time vs best");
+  std::printf("\n #  %-*s %6s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n",
+              static_cast<int>(width), "program", "setups", "time", "air cut", "energy kJ", "kWh",
+              "mm3", "SEC J/mm3", "CO2 g", ("cost " + currency).c_str(), "energy vs best",
+              "time vs best");
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const RankedProgram& r = ranked[i];
     const ProgramTotals& t = r.totals;
     const bool best = r.rank == 1;
-    std::printf(
-        "%2d  %-*s %10s %10s %10.2f %9.5f %9.0f %9.2f %9.2f %10.4f  %-22s %s\n", r.rank,
-        static_cast<int>(width), names[i].c_str(), time_cells[i].c_str(), air_cells[i].c_str(),
-        t.energy_j / 1000, t.energy_j / 3.6e6, t.removed_mm3, t.sec_j_mm3, t.co2_kg * 1000, t.cost,
-        best ? "best" : diff_text(r.energy_diff_j / 1000, r.energy_diff_pct, "kJ", 2).c_str(),
-        best ? "-" : diff_text(r.time_diff_s, r.time_diff_pct, "s", 1).c_str());
+    std::printf("%2d  %-*s %6zu %10s %10s %10.2f %9.5f %9.0f %9.2f %9.2f %10.4f  %-22s %s\n",
+                r.rank, static_cast<int>(width), names[i].c_str(), t.setups, time_cells[i].c_str(),
+                air_cells[i].c_str(), t.energy_j / 1000, t.energy_j / 3.6e6, t.removed_mm3,
+                t.sec_j_mm3, t.co2_kg * 1000, t.cost,
+                best ? "best"
+                     : diff_text(r.energy_diff_j / 1000, r.energy_diff_pct, "kJ", 2).c_str(),
+                best ? "-" : diff_text(r.time_diff_s, r.time_diff_pct, "s", 1).c_str());
   }
 
   // Component by component, each program with its difference to the best; columns as wide as

@@ -135,9 +135,16 @@ int run_estimate(const EstimateCliOptions& o) {
     if (e.removal)
       std::printf(
           "  stock       %s\n              %s engine, %.3f mm grid, %zu columns, %.1f MiB\n",
-          e.removal->stock_description.c_str(), std::string(engine_name(e.removal->engine)).c_str(),
-          e.removal->grid.dx, e.removal->grid.columns(),
-          double(e.removal->memory_bytes) / (1 << 20));
+          e.setups.size() > 1 ? "one per setup (below)" : e.removal->stock_description.c_str(),
+          std::string(engine_name(e.removal->engine)).c_str(), e.removal->grid.dx,
+          e.removal->grid.columns(), double(e.removal->memory_bytes) / (1 << 20));
+    if (e.setups.size() > 1)
+      for (std::size_t k = 0; k < e.setups.size(); ++k) {
+        const SetupSummary& s = e.setups[k];
+        std::printf("  setup %zu     from line %d (%s): %.1f s, %.1f kJ, %.0f mm^3\n", k + 1,
+                    s.first_line + 1, s.reason.c_str(), s.time_s, s.energy_j / 1e3, s.removed_mm3);
+        if (!s.stock.empty()) std::printf("              stock %s\n", s.stock.c_str());
+      }
     print_operations(e);
     if (!e.unsimulated_tools.empty()) {
       std::printf("  not simulated:");

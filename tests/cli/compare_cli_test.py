@@ -117,7 +117,7 @@ with tempfile.TemporaryDirectory() as d:
     check(r.stdout.count(os.path.basename(long_name)) >= 3, "a long name is printed whole, in both tables")
     check(same in r.stdout and X in r.stdout, "equal file names: shown with their paths")
     rows = [l for l in r.stdout.splitlines() if l[:3].strip().isdigit()]
-    times = [l.split()[2] for l in rows]
+    times = [l.split()[3] for l in rows]
     check(len(rows) == 3 and all(":" in t for t in times), f"one time format in the column: {times}")
 
 r = run("compare", X, "--machine", HAAS)

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "cam_stock.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
@@ -92,4 +93,51 @@ TEST_CASE("a job's stock per setup: the second given, the first from the cuts") 
   CHECK_FALSE(e.setups[1].stock_guessed);
   CHECK(e.setups[1].stock.find("box") != std::string::npos);
   CHECK(e.setups[1].removed_mm3 > e.setups[0].removed_mm3 * 0.9);
+}
+
+TEST_CASE("CAM comments' stock corners: Carbide Create's and the spelt-out form") {
+  using estimate_detail::stock_corner_of_comment;
+  const auto low = stock_corner_of_comment("stockMin:-150.00mm, -100.00mm, -8.00mm");
+  REQUIRE(low);
+  CHECK_FALSE(low->is_max);
+  CHECK(low->xyz[2].first == -8);
+  CHECK(low->xyz[2].second == LengthUnit::Mm);
+  const auto high = stock_corner_of_comment(" STOCK MAX = 4, 3, 0 ");
+  REQUIRE(high);
+  CHECK(high->is_max);
+  CHECK(high->xyz[0].second == LengthUnit::Program);
+  for (const char* not_one : {"STOCK 4.125 x 3.625 x 1.000", "stockMin:1,2", "stockMin:1,2,3,4",
+                              "stock min is 1,2,3", "Stock is 30mm diameter Acetal Rod"}) {
+    CAPTURE(std::string(not_one));
+    CHECK_FALSE(stock_corner_of_comment(not_one));
+  }
+}
+
+TEST_CASE("G41 in control offsets the contour, in wear (job or profile) it runs as programmed") {
+  // A 40 x 40 square contour with G41 D1, the 10 mm tool described in a comment: in control the
+  // tool runs a radius outside. rs274 (a tool table with this tool) gives the path: entry 26.7,
+  // sides 37.9 + 3 x 40, three corner arcs 3 x 7.85, exit 25 mm = 233.2 mm, against 216.6 mm as
+  // programmed: 16.6 mm more, 3.3 s at F300.
+  const std::string program =
+      "G21 G90 G17 G94\n(T1 D=10. CR=0. - FLAT END MILL)\nT1 M6\nS6000 M3\nG0 X-20 Y-20 Z5\n"
+      "G1 Z-1 F100\nG41 D1 G1 X0 Y0 F300\nG1 Y40\nG1 X40\nG1 Y0\nG1 X0\nG40 G1 X-20 Y-20\n"
+      "G0 Z5\nM30\n";
+  EstimateOptions plain;
+  plain.simulate_removal = false;
+  const Estimate control = estimate_program(make_source("c.nc", program), generic(), plain);
+  EstimateOptions wear = plain;
+  wear.cutter_compensation = CutterCompMode::Wear;
+  const Estimate as_wear = estimate_program(make_source("c.nc", program), generic(), wear);
+  MachineProfile shop = generic();
+  shop.setup.cutter_compensation = CutterCompMode::Wear;
+  const Estimate shop_wear = estimate_program(make_source("c.nc", program), shop, plain);
+  REQUIRE_FALSE(control.failed);
+  CHECK(as_wear.time.cutting_s() == doctest::Approx(shop_wear.time.cutting_s()));
+  CHECK(control.time.cutting_s() - as_wear.time.cutting_s() > 3.0);
+  CHECK(control.time.cutting_s() - as_wear.time.cutting_s() < 3.6);
+  // A job's control wins over the profile's wear.
+  EstimateOptions job_control = plain;
+  job_control.cutter_compensation = CutterCompMode::Control;
+  const Estimate forced = estimate_program(make_source("c.nc", program), shop, job_control);
+  CHECK(forced.time.cutting_s() == doctest::Approx(control.time.cutting_s()));
 }

@@ -279,12 +279,15 @@ TEST_CASE("[setup]: work offsets, travel, Z home and power-on units") {
 source = "the shop's setup sheet"
 z_home_above_work_in = 6
 power_on_units = "inch"
+cutter_compensation = "wear"
 work_offsets_mm = { G54 = [-381.0, -203.2, -355.6], "G59.1" = [-100, -50, -300] }
 travel_mm = { x = [-762, 0], y = [-406, 0], z = [-508, 0] }
 )",
                                          "s.toml");
   CHECK(m.setup.z_home_above_work_mm == doctest::Approx(152.4));
   CHECK(m.setup.power_on_inch == true);
+  CHECK(m.setup.cutter_compensation == CutterCompMode::Wear);
+  CHECK_FALSE(plain.setup.cutter_compensation);
   REQUIRE(m.setup.work_offsets.size() == 2);
   CHECK(m.setup.work_offsets.at(1).z == doctest::Approx(-355.6));
   CHECK(m.setup.work_offsets.at(7).x == -100);
@@ -301,4 +304,6 @@ travel_mm = { x = [-762, 0], y = [-406, 0], z = [-508, 0] }
   check_names_file_and_key(refusal(generic + "[setup]\npower_on_units = \"cm\"\n"),
                            "setup.power_on_units");
   check_names_file_and_key(refusal(generic + "[setup]\nhome_above = 3\n"), "setup.home_above");
+  check_names_file_and_key(refusal(generic + "[setup]\ncutter_compensation = \"both\"\n"),
+                           "setup.cutter_compensation");
 }

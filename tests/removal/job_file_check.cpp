@@ -83,6 +83,40 @@ TEST_CASE("job file: units of the stock's values without one") {
   CHECK(diagnostics[0].message.find("\"mm\" or \"in\"") != std::string::npos);
 }
 
+TEST_CASE("job file: a stock per setup and the work offsets") {
+  std::vector<Diagnostic> diagnostics;
+  const auto job = parse_job_file("units = \"in\"\n"
+                                  "[[setup]]\nname = \"top\"\nstock = \"box:0,0,-1,4,3,0\"\n"
+                                  "[[setup]]\n"
+                                  "[[setup]]\nstock_stl = \"flipped.stl\"\n"
+                                  "[work_offsets_mm]\nG54 = [-400, -200, -350.5]\n"
+                                  "\"g59.1\" = [-100, -50, -300]\n",
+                                  "jobs/part.ncjoule.toml", diagnostics);
+  REQUIRE(job);
+  CHECK(diagnostics.empty());
+  REQUIRE(job->stock);
+  CHECK(job->stock->in_mm(false).box.zmin == doctest::Approx(-25.4));
+  REQUIRE(job->setup_stocks.size() == 2);
+  CHECK_FALSE(job->setup_stocks[0]); // the second setup: from its cuts
+  REQUIRE(job->setup_stocks[1]);
+  CHECK(job->setup_stocks[1]->kind == StockSpec::Kind::Stl);
+  CHECK(job->setup_stocks[1]->stl_units == LengthUnit::Inch);
+  REQUIRE(job->work_offsets.size() == 2);
+  CHECK(job->work_offsets.at(1).z == -350.5);
+  CHECK(job->work_offsets.at(7).x == -100);
+
+  for (const char* bad :
+       {"stock = \"box:0,0,-1,4,3,0\"\n[[setup]]\nstock = \"box:0,0,-1,4,3,0\"\n", "setup = 3\n",
+        "[work_offsets_mm]\nG60 = [0, 0, 0]\n", "[work_offsets_mm]\nG55 = [0, 0]\n",
+        "[[setup]]\nstock = \"box:0,0,x,4,3,0\"\n"}) {
+    CAPTURE(std::string(bad));
+    std::vector<Diagnostic> problems;
+    CHECK_FALSE(parse_job_file(bad, "part.ncjoule.toml", problems));
+    REQUIRE_FALSE(problems.empty());
+    CHECK(problems[0].line > 0);
+  }
+}
+
 TEST_CASE("job file: an STL stock is found beside the job file") {
   std::vector<Diagnostic> diagnostics;
   const auto job = parse_job_file("stock_stl = \"parts/blank.stl\"\n", "jobs/a.toml", diagnostics);
@@ -143,7 +177,8 @@ TEST_CASE("job file: mistakes name the file, the line and the key") {
   CHECK(diagnostics[0].message.find("stok") != std::string::npos);
 }
 
-TEST_CASE("tools given to estimate_program replace header comments: a missing one is timed without removal") {
+TEST_CASE("tools given to estimate_program replace header comments: a missing one is timed without "
+          "removal") {
   const SourceFile source = make_source("slot.ngc", "(T1 D=6. CR=0. - ZMIN=-2. - FLAT END MILL)\n"
                                                     "G21 G90\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\n"
                                                     "G1 Z-2 F100\nG1 X40 F600\nG0 Z5\nM30\n");

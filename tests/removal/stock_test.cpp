@@ -135,7 +135,7 @@ TEST_CASE("default stock: bounding box of the cutting moves") {
   CHECK(box->zmax == -1); // the highest level move; the plunge from Z1 and rapids do not count
 
   const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
-  CHECK(r.stock_description.find("default") != std::string::npos);
+  CHECK(r.stock_description.find("guessed") != std::string::npos);
   CHECK(r.stock_description.find("travels in XY") != std::string::npos);
   CHECK(r.removed_mm3 > 0);
 

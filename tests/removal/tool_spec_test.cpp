@@ -57,3 +57,21 @@ TEST_CASE("tool specs: mistakes are refused with a reason") {
   CHECK(tool_shape_from_name("Chamfer") == ToolShape::Chamfer);
   CHECK_FALSE(tool_shape_from_name("vee"));
 }
+
+TEST_CASE("tool specs: lengths may carry their unit, angles may not") {
+  auto quarter = parse_tool_spec("1:flat:0.25in");
+  REQUIRE(quarter);
+  CHECK(quarter->diameter_mm == doctest::Approx(6.35));
+  auto bull = parse_tool_spec("3:bullnose:0.5\":0.03in");
+  REQUIRE(bull);
+  CHECK(bull->diameter_mm == doctest::Approx(12.7));
+  CHECK(bull->corner_radius_mm == doctest::Approx(0.762));
+  auto vbit = parse_tool_spec("5:chamfer:12mm:60:0.02in");
+  REQUIRE(vbit);
+  CHECK(vbit->tip_angle_deg == 60);
+  CHECK(vbit->tip_diameter_mm == doctest::Approx(0.508));
+  std::vector<Diagnostic> problems;
+  CHECK_FALSE(parse_tool_spec("4:drill:6.8:118in", &problems));
+  REQUIRE(problems.size() == 1);
+  CHECK(problems[0].message.find("118in") != std::string::npos);
+}

@@ -43,6 +43,9 @@ struct EstimateOptions {
   // Work offsets (machine coordinates of each origin, mm; 1..9 = G54..G59.3) from a job file,
   // in place of the profile's [setup] work_offsets_mm for the same offset.
   std::map<int, Pose> work_offsets;
+  // How this program's G41/G42 were posted, whatever the program and the profile say (a job
+  // file's cutter_compensation); empty: the program's words, else the profile's [setup].
+  std::optional<CutterCompMode> cutter_compensation;
   // The tool of moves that select and describe none; empty: the machine profile's.
   std::optional<Tool> default_tool;
   // The workpiece material (material.hpp); empty: the machine profile's. It sets the cutting
@@ -69,14 +72,22 @@ struct EstimateOptions {
 //   stock = "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX"   (or an .stl path)   or   stock_stl = "x.stl"
 //   units = "mm" | "in"   (of the stock's values written without a unit; default: the program's)
 //   material = "aluminium-alloy"                  (the workpiece: material.hpp)
+//   [[setup]]  stock = ... or stock_stl = ..., name = "..."   (one per setup of the program, in
+//              order, in place of the top-level stock: setups.hpp says where a setup begins)
+//   [work_offsets_mm]  G54 = [X, Y, Z], G55 = ...  (machine coordinates of each origin)
+//   cutter_compensation = "control" | "wear"      (how the program's G41/G42 were posted)
 //   [[tool]]  number = 1, type = "flat" | "ball" | "bullnose" | "drill" | "chamfer",
 //             diameter_mm, corner_radius_mm, point_angle_deg, tip_diameter_mm,
 //             flute_length_mm, shank_diameter_mm, flutes
 // Paths are relative to the job file's folder.
 struct JobFile {
   std::string path;
-  std::optional<StockSpec> stock; // empty: the job gives none
-  std::string material;           // empty: the job names none
+  std::optional<StockSpec> stock; // of the first setup; empty: the job gives none
+  // Stocks of the setups after the first ([[setup]] entries 2, 3, ...); empty ones: none given.
+  std::vector<std::optional<StockSpec>> setup_stocks;
+  std::map<int, Pose> work_offsets; // [work_offsets_mm]: G54 = [X, Y, Z], ... (1..9)
+  std::optional<CutterCompMode> cutter_compensation; // "control" | "wear"
+  std::string material;                              // empty: the job names none
   std::map<int, Tool> tools;
 };
 // Parses the text of a job file that lives at `path`. Errors (file, line, column, key and what
@@ -195,10 +206,12 @@ struct PathPoint {
 
 // One setup of a program (a clamping of the part): where it starts, why, its stock and totals.
 struct SetupSummary {
-  int first_line = 0;        // 0-based source line of its first command
-  std::string reason;        // "the program's start", "M0 at line 41, then G55"
-  std::string stock;         // the stock it cuts, as RemovalResult::stock_description says
-  bool stock_guessed = true; // the box of its own cuts, not a stock given
+  int first_line = 0;            // 0-based source line of its first command
+  std::string reason;            // "the program's start", "M0 at line 41, then G55"
+  std::string stock;             // the stock it cuts, as RemovalResult::stock_description says
+  bool stock_guessed = true;     // the box of its own cuts, not a stock given
+  std::string stock_origin;      // who gave it (StockSpec::origin; empty when guessed)
+  std::optional<Box3> stock_box; // program coordinates, mm; empty: no stock simulated
   double time_s = 0, energy_j = 0, removed_mm3 = 0;
 };
 

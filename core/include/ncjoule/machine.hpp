@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ncjoule/gcode.hpp"
@@ -135,7 +136,15 @@ struct WorkSetup {
   // The units of a program that sets neither G20 nor G21, as the control is set at power-on
   // (Haas setting 9, Fanuc parameter 0000 INI); not given: mm, with a warning either way.
   std::optional<bool> power_on_inch;
+  // How this shop's posts write G41/G42 when a program does not say (cutter_compensation =
+  // "control" or "wear"): in control, the path is the part contour; in wear, the tool centre.
+  std::optional<CutterCompMode> cutter_compensation;
 };
+
+// "G54" .. "G59", "G59.1" .. "G59.3" (any case) -> 1 .. 9; 0 when the name is none of them.
+int work_offset_index(std::string_view name);
+// 1 .. 9 -> "G54" .. "G59.3"; "G54" for anything else.
+std::string work_offset_name(int index);
 
 struct MachineProfile {
   std::string name;

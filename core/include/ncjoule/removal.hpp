@@ -416,8 +416,13 @@ struct CommandRemoval {
 struct RemovalResult {
   std::vector<CommandRemoval> commands; // parallel to Timeline::commands
   double removed_mm3 = 0;
-  std::string stock_description;       // which stock was used, e.g. "box ... (from cutting moves)"
-  std::size_t memory_bytes = 0;        // memory held by the stock model
+  std::string stock_description; // which stock was used, e.g. "box ... (from cutting moves)"
+  // Where the stock came from: given (an option, a job file, the program's CAM comments) or
+  // guessed from the cutting moves; None when nothing is simulated.
+  enum class StockSource : std::uint8_t { None, Given, Guessed } stock_source = StockSource::None;
+  std::string stock_origin;     // who gave it (StockSpec::origin): "--stock", a file, a comment
+  Box3 stock_box;               // its bounds in program coordinates (mm), as the program writes Z
+  std::size_t memory_bytes = 0; // memory held by the stock model
   std::vector<Diagnostic> diagnostics; // collisions, unknown tools, ...
   EngineKind engine = EngineKind::Dexel;
   GridFrame grid;              // the grid used (dx, dy: cell size in mm)

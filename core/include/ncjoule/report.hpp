@@ -45,6 +45,8 @@ struct ProgramTotals {
   ComponentValues components_j{};
   double air_cut_s = 0;       // feed moves that remove nothing
   bool volumes_known = false; // removal simulated with every tool described
+  std::size_t setups = 1;     // clampings of the part (Estimate::setups)
+  bool stock_guessed = false; // a setup's stock is the box of its own cuts, not one given
 };
 ProgramTotals program_totals(const Estimate& estimate);
 

@@ -1,0 +1,30 @@
+// Internal: the stock a CAM system states in the program's header comments. Such a stock is
+// the one the toolpaths were computed for, so it comes before any guess from the cutting moves.
+//
+// Read: Carbide Create's "(stockMin:-150.00mm, -100.00mm, -8.00mm)" and
+// "(stockMax:150.00mm, 100.00mm, 0.00mm)", and the same words spelt "STOCK MIN" / "STOCK MAX"
+// with ':' or '='. A stock given only by its size ("(STOCK 4.125 x 3.625 x 1.000)") says not
+// where it sits, so it is not used.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/removal.hpp"
+
+namespace ncjoule::estimate_detail {
+
+// The stock the first `max_lines` lines' comments state, values without a unit in the
+// program's units; nullopt when they state none (or only one corner).
+std::optional<StockSpec> stock_from_cam_comments(const SourceFile& source, const Dialect& dialect,
+                                                 std::size_t max_lines = 200);
+
+// One comment's corner: which (min or max) and its three lengths (exposed for tests).
+struct StockCorner {
+  bool is_max = false;
+  std::pair<double, LengthUnit> xyz[3];
+};
+std::optional<StockCorner> stock_corner_of_comment(std::string_view comment);
+
+} // namespace ncjoule::estimate_detail

@@ -137,9 +137,10 @@ void Interpreter::o_call(const Block& b) {
   }
   const std::optional<std::size_t> sub = labels_.last(label, "sub");
   if (!sub) {
-    error(col, "subroutine o" + label +
-                   " is not defined in this file (subroutine files on a search path are not "
-                   "read): call skipped");
+    // LinuxCNC finds o<name> in a file on the config's SUBROUTINE_PATH: the program runs.
+    warning(col, "subroutine o" + label +
+                     " is not defined in this file: the control reads it from its subroutine "
+                     "path; its time is not counted (call skipped)");
     return;
   }
   call_subroutine(*sub, std::move(args), false, 1);
@@ -276,8 +277,11 @@ void Interpreter::macro_call(const BlockValues& v) {
   }
   auto it = program_numbers_.find(std::lround(*v['p']));
   if (it == program_numbers_.end()) {
-    error(v.column['p' - 'a'], "macro program O" + std::to_string(std::lround(*v['p'])) +
-                                   " is not in this file: call skipped");
+    // Probing and shop macros (O9000-O9999, Renishaw's O9810...) live in the control's memory:
+    // the program runs; only this call's time is unknown.
+    warning(v.column['p' - 'a'], "macro program O" + std::to_string(std::lround(*v['p'])) +
+                                     " is not in this file: the control holds it; its time is "
+                                     "not counted (call skipped)");
     return;
   }
   static constexpr std::pair<char, int> map[] = {
@@ -330,9 +334,16 @@ void Interpreter::fanuc_call(const BlockValues& v, int m) {
   } else {
     target = local_subprogram_line(p);
   }
-  if (!target) {
-    error(v.column['p' - 'a'], (m == 98 ? "subprogram O" : "local subprogram N") +
-                                   std::to_string(p) + " is not in this file: call skipped");
+  if (!target && m == 98) {
+    // A subprogram in the control's memory (O8000-O9999 and the shop's own): the program runs.
+    warning(v.column['p' - 'a'], "subprogram O" + std::to_string(p) +
+                                     " is not in this file: the control holds it; its time is "
+                                     "not counted (call skipped)");
+    return;
+  }
+  if (!target) { // M97's N block must be in this program: the control stops with an alarm
+    error(v.column['p' - 'a'],
+          "local subprogram N" + std::to_string(p) + " is not in this file: call skipped");
     return;
   }
   if (repeats > 0) call_subroutine(*target, {}, true, repeats);

@@ -42,7 +42,7 @@ private:
   std::string setup_comment_before(int line);
 
   const SourceFile& source_;
-  const Dialect& dialect_;
+  Dialect dialect_;    // a copy: callers pass temporaries (find_dialect gives one)
   int looked_to_ = -1; // comments read up to this line
   std::vector<SetupStart> starts_;
   int work_offset_ = 1;

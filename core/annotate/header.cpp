@@ -126,10 +126,9 @@ std::vector<Group> stocks(const Estimate& estimate) {
     if (estimate.setups.size() > 1) g.fields.push_back(field("SETUP", std::to_string(k + 1)));
     g.fields.push_back(field("BOX_MM", box_text(*setup.stock_box, 1, 3)));
     if (estimate.inch) g.fields.push_back(field("BOX_IN", box_text(*setup.stock_box, 1 / 25.4, 4)));
-    const bool from_program = setup.stock_origin.rfind("the program's", 0) == 0;
-    const char* source = setup.stock_guessed ? "GUESSED FROM CUTS"
-                         : from_program      ? "FROM CAM COMMENTS"
-                                             : "GIVEN";
+    const char* source = setup.stock_source == StockSource::Guessed   ? "GUESSED FROM CUTS"
+                         : setup.stock_source == StockSource::Program ? "FROM CAM COMMENTS"
+                                                                      : "GIVEN";
     for (std::string_view rest = source; !rest.empty();) { // one field a word: lines wrap
       const std::size_t blank = std::min(rest.find(' '), rest.size());
       g.fields.emplace_back(rest.substr(0, blank));

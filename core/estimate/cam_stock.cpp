@@ -62,6 +62,7 @@ std::optional<StockSpec> stock_from_cam_comments(const SourceFile& source, const
     spec.box_units[i + 3] = high->xyz[i].second;
     if (!(hi[i] > lo[i])) return std::nullopt; // an empty or inverted box is no stock
   }
+  spec.stated_by_program = true;
   spec.origin = "the program's stock comments (stockMin, line " + std::to_string(low_line) +
                 ", stockMax, line " + std::to_string(high_line) + ")";
   return spec;

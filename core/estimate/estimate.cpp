@@ -275,14 +275,10 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   ProgramScan scan(source);
   // Without work offsets, Z home is placed above the highest point seen so far; the second pass
   // places it above the highest point of the whole program.
-  estimate_detail::MachineMoves first_view(setup, offsets_given, 0, source.path);
-  InterpretResult run = interpret(source, interpreter, [&](const CanonCommand& c) {
-    first_view.set_home_z(
-        estimate_detail::MachineMoves::home_z_for(first_view.highest_program_z(), setup));
-    scan.add(first_view.view(c));
-  });
-  const double home_z =
-      estimate_detail::MachineMoves::home_z_for(first_view.highest_program_z(), setup);
+  estimate_detail::MachineMoves first_view(setup, offsets_given, std::nullopt, source.path);
+  InterpretResult run =
+      interpret(source, interpreter, [&](const CanonCommand& c) { scan.add(first_view.view(c)); });
+  const double home_z = first_view.home_z();
   e.dialect = run.dialect;
   e.dialect_origin = run.dialect_origin;
   e.dialect_reason = run.dialect_reason;

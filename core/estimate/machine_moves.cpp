@@ -13,7 +13,7 @@ constexpr std::uint8_t kZ = 4;
 
 } // namespace
 
-MachineMoves::MachineMoves(const WorkSetup& setup, bool offsets_given, double home_z,
+MachineMoves::MachineMoves(const WorkSetup& setup, bool offsets_given, std::optional<double> home_z,
                            std::string file)
     : setup_(setup), offsets_given_(offsets_given), home_z_(home_z), file_(std::move(file)) {
   // G54 is in force from the start.
@@ -21,12 +21,13 @@ MachineMoves::MachineMoves(const WorkSetup& setup, bool offsets_given, double ho
     work_offset_ = g54->second;
 }
 
-double MachineMoves::home_z_for(double highest_program_z, const WorkSetup& setup) {
-  return std::max(highest_program_z, 0.0) + setup.z_home_above_work_mm;
+double MachineMoves::home_z() const {
+  return home_z_ ? *home_z_ : std::max(highest_z_, 0.0) + setup_.z_home_above_work_mm;
 }
 
 CanonCommand MachineMoves::view(const CanonCommand& command) {
   CanonCommand c = command;
+  const double home = home_z(); // above what came before this command
   switch (c.kind) {
   case CanonKind::WorkOffset: {
     const int index = int(c.value);
@@ -58,16 +59,16 @@ CanonCommand MachineMoves::view(const CanonCommand& command) {
   if (!offsets_given_) {
     // Without offsets, Z home is above the work: the tool stays there until Z is programmed.
     if (lifted_) {
-      c.start.z = home_z_;
+      c.start.z = home;
       if (c.end.z == programmed_z_ && !(c.machine_axes & kZ))
-        c.end.z = home_z_;
+        c.end.z = home;
       else
         lifted_ = false;
     }
     if (c.machine_axes & kZ) {
       lifted_ = true;
       programmed_z_ = c.end.z;
-      c.end.z = home_z_;
+      c.end.z = home;
     }
   } else if (setup_.travel) {
     check_travel(c);

@@ -27,28 +27,26 @@ namespace ncjoule::estimate_detail {
 class MachineMoves {
 public:
   // `offsets_given`: the work offsets are described (the interpreter's parameters hold them).
-  // `home_z`: the work Z of the machine's Z home when they are not.
-  MachineMoves(const WorkSetup& setup, bool offsets_given, double home_z, std::string file);
+  // `home_z`: the work Z of the machine's Z home when they are not; none: above the highest
+  // point seen so far (a first pass, still finding the program's highest point).
+  MachineMoves(const WorkSetup& setup, bool offsets_given, std::optional<double> home_z,
+               std::string file);
 
   // The command as the machine runs it (positions changed only without offsets).
   CanonCommand view(const CanonCommand& command);
 
-  // Moves Z home (while the highest point of the program is still being found).
-  void set_home_z(double home_z) { home_z_ = home_z; }
-  // The highest work Z the program's own moves reach (not those sent to machine positions).
-  double highest_program_z() const { return highest_z_; }
   // What the view found to warn about, once each.
   std::vector<Diagnostic> take_diagnostics() { return std::move(diagnostics_); }
 
-  // The work Z of Z home for a program whose own moves reach `highest_program_z`.
-  static double home_z_for(double highest_program_z, const WorkSetup& setup);
+  // The work Z of Z home for the program's moves seen so far (all of them, after a first pass).
+  double home_z() const;
 
 private:
   void check_travel(const CanonCommand& move);
 
   WorkSetup setup_;
   bool offsets_given_ = false;
-  double home_z_ = 0;
+  std::optional<double> home_z_; // fixed; none: follows highest_z_
   std::string file_;
   bool lifted_ = false;     // the tool is at Z home since a machine move
   double programmed_z_ = 0; // where the interpreter thinks Z is meanwhile

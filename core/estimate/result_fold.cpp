@@ -247,10 +247,8 @@ void ResultFolder::finish(double total_s) {
   for (std::size_t k = 0; k < setup_totals_.size() && k < removals_.size(); ++k) {
     const RemovalResult r = removals_[k]->summary();
     setup_totals_[k].stock = r.stock_description;
-    setup_totals_[k].stock_guessed = r.stock_source != RemovalResult::StockSource::Given;
-    setup_totals_[k].stock_origin = r.stock_origin;
-    if (r.stock_source != RemovalResult::StockSource::None)
-      setup_totals_[k].stock_box = r.stock_box;
+    setup_totals_[k].stock_source = r.stock_source;
+    if (r.stock_source != StockSource::None) setup_totals_[k].stock_box = r.stock_box;
   }
   out_.setups = setup_totals_;
   out_.series.power_w = power_.result();

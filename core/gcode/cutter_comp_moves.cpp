@@ -171,6 +171,19 @@ void Interpreter::comp_hold(CanonCommand c, PlanePoint direction, double sweep) 
   comp_next_.reset();
 }
 
+void Interpreter::comp_hold_straight(CanonKind kind, const Pose& start, const Pose& end,
+                                     PlanePoint tool_at, PlanePoint direction) {
+  // The programmed end, with the tool's point in the plane: the other axes go as programmed.
+  Pose tool_end = end;
+  set_plane_point(tool_end, comp_.plane, tool_at);
+  CanonCommand c = make(kind);
+  c.start = start;
+  c.end = tool_end;
+  comp_.tool = tool_end;
+  pos_ = end;
+  comp_hold(std::move(c), direction, 0);
+}
+
 bool Interpreter::comp_straight(CanonKind kind, const Pose& end, int column) {
   const Plane plane = comp_.plane;
   const double r = comp_.radius;
@@ -189,29 +202,16 @@ bool Interpreter::comp_straight(CanonKind kind, const Pose& end, int column) {
     }
     const double normal = direction(cur, p) + (left ? kHalfPi : -kHalfPi);
     comp_.queue.set_start(cur);
-    Pose tool_end = end;
-    set_plane_point(tool_end, plane, e.point);
-    CanonCommand c = make(kind);
-    c.start = comp_.exit_from.value_or(comp_.tool);
+    const Pose start = comp_.exit_from.value_or(comp_.tool);
     comp_.exit_from.reset();
-    c.end = tool_end;
     comp_.first = false;
-    comp_.tool = tool_end;
-    pos_ = end;
-    comp_hold(std::move(c), {std::cos(normal), std::sin(normal)}, 0);
+    comp_hold_straight(kind, start, end, e.point, {std::cos(normal), std::sin(normal)});
     return true;
   }
   // A later move (convert_straight_comp2).
   if (p.a == op.a && p.b == op.b) {
     // No motion in the plane: held with the move before it, whose end it shares.
-    Pose tool_end = end;
-    set_plane_point(tool_end, plane, cur);
-    CanonCommand c = make(kind);
-    c.start = comp_.tool;
-    c.end = tool_end;
-    comp_.tool = tool_end;
-    pos_ = end;
-    comp_hold(std::move(c), {0, 0}, 0);
+    comp_hold_straight(kind, comp_.tool, end, cur, {0, 0});
     return true;
   }
   double theta = direction(op, cur), alpha = direction(op, p), beta = 0, gamma = 0;
@@ -276,14 +276,7 @@ bool Interpreter::comp_straight(CanonKind kind, const Pose& end, int column) {
     comp_release();
     comp_.queue.set_start(cur);
   }
-  Pose tool_end = end;
-  set_plane_point(tool_end, plane, end_pt);
-  CanonCommand c = make(kind);
-  c.start = comp_.tool;
-  c.end = tool_end;
-  comp_.tool = tool_end;
-  pos_ = end;
-  comp_hold(std::move(c), {p.a - op.a, p.b - op.b}, 0);
+  comp_hold_straight(kind, comp_.tool, end, end_pt, {p.a - op.a, p.b - op.b});
   return true;
 }
 

@@ -171,7 +171,13 @@ private:
   bool comp_arc(const CanonCommand& arc, int column);
   // A move compensation does not make (G28, G53, a cycle, a probe) with compensation on.
   void comp_bypass(int column, const std::string& what);
+  // Holds `c` until the next move shows its corner (`direction`: where a straight's end may move;
+  // `sweep`: an arc's programmed sweep).
   void comp_hold(CanonCommand c, PlanePoint direction, double sweep);
+  // Holds a straight from `start` to the programmed `end` with the tool at `tool_at` in the
+  // plane, and moves the tool and the program's position there.
+  void comp_hold_straight(CanonKind kind, const Pose& start, const Pose& end, PlanePoint tool_at,
+                          PlanePoint direction);
 
   // --- canned cycles (canned_cycles.cpp) -----------------------------------------------------
   void canned_cycle(Motion cycle, const BlockValues& v);

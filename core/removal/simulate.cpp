@@ -99,9 +99,9 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     Box3 box = spec.box;
     if (options.mirror_z) box.zmin = -spec.box.zmax, box.zmax = -spec.box.zmin;
     // A stock the program's comments state says so; others are given by the user.
-    const bool from_program = spec.origin.rfind("the program's", 0) == 0;
-    stock_ = make_box_stock(box, format_box(spec.box) +
-                                     (from_program ? " (from " + spec.origin + ")" : " (given)"));
+    stock_ = make_box_stock(box, format_box(spec.box) + (spec.stated_by_program
+                                                             ? " (from " + spec.origin + ")"
+                                                             : " (given)"));
     break;
   }
   case StockSpec::Kind::Stl: {
@@ -151,9 +151,9 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   }
   }
   totals_.stock_description = stock_->description();
-  totals_.stock_source = spec.kind == StockSpec::Kind::Default ? RemovalResult::StockSource::Guessed
-                                                               : RemovalResult::StockSource::Given;
-  totals_.stock_origin = spec.origin;
+  totals_.stock_source = spec.kind == StockSpec::Kind::Default ? StockSource::Guessed
+                         : spec.stated_by_program              ? StockSource::Program
+                                                               : StockSource::Given;
   totals_.stock_box = stock_->bounds();
   if (options.mirror_z)
     totals_.stock_box.zmin = -stock_->bounds().zmax,

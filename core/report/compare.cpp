@@ -39,9 +39,12 @@ ProgramTotals program_totals(const Estimate& e) {
   t.components_j = e.energy.components_j;
   t.air_cut_s = e.time.air_cut_s;
   t.setups = std::max<std::size_t>(e.setups.size(), 1);
+  // No stock, or the box of a program's own cuts: each alternative cuts a stock of its own.
   t.stock_guessed =
-      e.removal.has_value() && std::any_of(e.setups.begin(), e.setups.end(),
-                                           [](const SetupSummary& s) { return s.stock_guessed; });
+      e.removal.has_value() &&
+      std::any_of(e.setups.begin(), e.setups.end(), [](const SetupSummary& s) {
+        return s.stock_source == StockSource::Guessed || s.stock_source == StockSource::None;
+      });
   t.volumes_known = e.removal.has_value() && e.unsimulated_tools.empty();
   return t;
 }

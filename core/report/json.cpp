@@ -8,6 +8,20 @@
 namespace ncjoule {
 namespace {
 
+const char* stock_source_name(StockSource source) {
+  switch (source) {
+  case StockSource::Given:
+    return "given";
+  case StockSource::Program:
+    return "program";
+  case StockSource::Guessed:
+    return "guessed";
+  case StockSource::None:
+    break;
+  }
+  return "none";
+}
+
 using report_detail::JsonWriter;
 
 const char* severity_name(Severity s) {
@@ -153,10 +167,7 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
     w.field("energy_j", setup.energy_j);
     w.field("removed_mm3", setup.removed_mm3);
     w.field("stock", setup.stock.empty() ? std::string("not simulated") : setup.stock);
-    w.field("stock_source", !setup.stock_box                                    ? "none"
-                            : setup.stock_guessed                               ? "guessed"
-                            : setup.stock_origin.rfind("the program's", 0) == 0 ? "program"
-                                                                                : "given");
+    w.field("stock_source", stock_source_name(setup.stock_source));
     if (setup.stock_box) {
       const Box3& b = *setup.stock_box;
       w.key("stock_box_mm");

@@ -1,19 +1,8 @@
 # Annotations (docs/annotation.md): written in each controller's comment syntax, never inside a
 # call, an expression or a string; within what the controller or its sender takes on a line; and
 # an annotation copied from another file is the user's text, kept byte for byte. Sourced by
-# scripts/attack.sh: uses case_, $N, $M, $P and $root, runs in its folder, adds to $failures.
+# scripts/attack.sh: uses case_, check_, $N, $M, $P and $root, runs in its folder, adds to $failures.
 
-# annotation_check NAME COMMAND...: one more case, held when the command succeeds.
-annotation_check() {
-  local name="$1"
-  shift
-  if "$@"; then
-    printf "ok   %-34s\n" "$name"
-  else
-    printf "FAIL %-34s\n" "$name"
-    failures=$((failures + 1))
-  fi
-}
 # same_canon DIALECT A B: A and B run the same canonical commands in DIALECT.
 same_canon() {
   "$N" canon --dialect "$1" -- "$2" > canon_a.txt 2> /dev/null &&
@@ -32,14 +21,14 @@ printf '%%_N_PART_MPF\n;$PATH=/_N_WKS_DIR/_N_PART_WPD\n;PART TITLE\nG0 X0 Y0 Z5\
   'CYCLE81(10,0,2,-5)' 'G1 X10 Y=COS (0) F100' 'G0 X1 MSG("a;b(c)")' > sinumerik.mpf
 case_ "annotate: Sinumerik calls, strings" 0 "" -- \
   "$N" annotate sinumerik.mpf -m "$M" --no-removal --dialect siemens -o sinumerik_annotated.mpf
-annotation_check "annotate: ... canon unchanged" same_canon siemens sinumerik.mpf sinumerik_annotated.mpf
-annotation_check "annotate: ... no ( ) comment added" bash -c '! grep -q "(NCJ" sinumerik_annotated.mpf'
-annotation_check "annotate: ... after the call" grep -qF 'CYCLE81(10,0,2,-5) ;NCJ T=' sinumerik_annotated.mpf
-annotation_check "annotate: ... after the expression" grep -qF 'G1 X10 Y=COS (0) F100 ;NCJ T=' sinumerik_annotated.mpf
-annotation_check "annotate: ... after the string" grep -qF 'G0 X1 MSG("a;b(c)") ;NCJ T=' sinumerik_annotated.mpf
-annotation_check "annotate: ... header after ;\$PATH, title" \
+check_ "annotate: ... canon unchanged" same_canon siemens sinumerik.mpf sinumerik_annotated.mpf
+check_ "annotate: ... no ( ) comment added" bash -c '! grep -q "(NCJ" sinumerik_annotated.mpf'
+check_ "annotate: ... after the call" grep -qF 'CYCLE81(10,0,2,-5) ;NCJ T=' sinumerik_annotated.mpf
+check_ "annotate: ... after the expression" grep -qF 'G1 X10 Y=COS (0) F100 ;NCJ T=' sinumerik_annotated.mpf
+check_ "annotate: ... after the string" grep -qF 'G0 X1 MSG("a;b(c)") ;NCJ T=' sinumerik_annotated.mpf
+check_ "annotate: ... header after ;\$PATH, title" \
   bash -c 'sed -n 3p sinumerik_annotated.mpf | grep -qx ";PART TITLE" && sed -n 4p sinumerik_annotated.mpf | grep -q "^;NCJ FILE KEY="'
-annotation_check "annotate: ... strip gives it back" strips_back sinumerik_annotated.mpf sinumerik.mpf
+check_ "annotate: ... strip gives it back" strips_back sinumerik_annotated.mpf sinumerik.mpf
 
 # An annotation copied from another annotated file, after a block and as a header line: the
 # user's note there. annotate and strip keep it byte for byte, and a comment that only looks like
@@ -50,9 +39,9 @@ note=$(grep -o ' (NCJ T=[^)]*)' pasted_from_annotated.ngc | head -1)
 total=$(grep -m1 '^(NCJ TOTAL ' pasted_from_annotated.ngc)
 printf 'G21 G90\n%s\nG0 X10 Y10 Z5\nG1 X40 F500%s\nG1 X80 (NCJ T=1s CK=ABCDEF)\nM2\n' "$total" "$note" > pasted.ngc
 case_ "annotate: a pasted annotation" 0 "" -- "$N" annotate pasted.ngc -m "$M" --no-removal -o pasted_annotated.ngc
-annotation_check "annotate: ... it was one" test -n "$note" -a -n "$total"
-annotation_check "annotate: ... kept through annotate+strip" strips_back pasted_annotated.ngc pasted.ngc
-annotation_check "annotate: ... and strip alone" strips_back pasted.ngc pasted.ngc
+check_ "annotate: ... it was one" test -n "$note" -a -n "$total"
+check_ "annotate: ... kept through annotate+strip" strips_back pasted_annotated.ngc pasted.ngc
+check_ "annotate: ... and strip alone" strips_back pasted.ngc pasted.ngc
 
 # grbl: senders stream a line only when it fits the 128-byte receive buffer with the lines in
 # flight: no annotated line over 125 bytes; a block without room gets its comment on the line
@@ -61,17 +50,17 @@ printf 'G21 G90\nG0 X0 Y0 Z5\nG1 X10 Y20 F300 (%s)\nG1 X20.123456 Y30.123456 Z-1
   "$(printf 'a%.0s' $(seq 95))" "$(printf 'b%.0s' $(seq 40))" > grbl_long.nc
 case_ "annotate: grbl line limit" 0 "" -- \
   "$N" annotate grbl_long.nc -m "$M" --no-removal --dialect grbl -o grbl_annotated.nc
-annotation_check "annotate: ... no line over 125 bytes" test "$(longest grbl_annotated.nc)" -le 125
-annotation_check "annotate: ... own line before the block" \
+check_ "annotate: ... no line over 125 bytes" test "$(longest grbl_annotated.nc)" -le 125
+check_ "annotate: ... own line before the block" \
   bash -c 'grep -B1 "^G1 X10 Y20 F300 (a" grbl_annotated.nc | head -1 | grep -q "^(NCJ T="'
-annotation_check "annotate: ... strip gives it back" strips_back grbl_annotated.nc grbl_long.nc
-annotation_check "annotate: ... canon unchanged" same_canon grbl grbl_long.nc grbl_annotated.nc
+check_ "annotate: ... strip gives it back" strips_back grbl_annotated.nc grbl_long.nc
+check_ "annotate: ... canon unchanged" same_canon grbl grbl_long.nc grbl_annotated.nc
 
 # Marlin: ';' comments ("( )" would be parameters to it, E= an extrusion), lines within its
 # 96-byte command buffer.
 printf 'G21\nG90\nG0 X0 Y0 Z5\nG1 X20 F600 ; perimeter\nM84\n' > marlin.gcode
 case_ "annotate: Marlin ';' comments" 0 "" -- \
   "$N" annotate marlin.gcode -m "$M" --no-removal --dialect reprap -o marlin_annotated.gcode
-annotation_check "annotate: ... no ( ) comment added" bash -c '! grep -q "(" marlin_annotated.gcode'
-annotation_check "annotate: ... no line over 95 bytes" test "$(longest marlin_annotated.gcode)" -le 95
-annotation_check "annotate: ... strip gives it back" strips_back marlin_annotated.gcode marlin.gcode
+check_ "annotate: ... no ( ) comment added" bash -c '! grep -q "(" marlin_annotated.gcode'
+check_ "annotate: ... no line over 95 bytes" test "$(longest marlin_annotated.gcode)" -le 95
+check_ "annotate: ... strip gives it back" strips_back marlin_annotated.gcode marlin.gcode

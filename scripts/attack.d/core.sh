@@ -1,20 +1,9 @@
 # The interpreter and the planner (core/gcode, core/kinematics): programs of a few bytes that
 # once took minutes (zero-length moves in a loop, a label searched from the top at every branch,
 # a line of unclosed brackets), nesting that overflowed the stack, and values no control takes
-# (infinite, 1e300) that were timed or dropped. Sourced by scripts/attack.sh: uses case_, $N, $M,
+# (infinite, 1e300) that were timed or dropped. Sourced by scripts/attack.sh: uses case_, check_, $N, $M,
 # runs in its folder, adds to $failures.
 
-# core_check NAME COMMAND...: one more case, held when the command succeeds.
-core_check() {
-  local name="$1"
-  shift
-  if "$@"; then
-    printf "ok   %-34s\n" "$name"
-  else
-    printf "FAIL %-34s\n" "$name"
-    failures=$((failures + 1))
-  fi
-}
 # no_inf_nan FILE: no 'inf' or 'nan' in FILE; no_odd_numbers FILE: nor a number with an exponent
 # (JSON may have those: its numbers are for programs to read).
 no_inf_nan() { ! grep -qaiE '(^|[^a-z])(inf|nan|infinity)([^a-z]|$)' "$1"; }
@@ -55,10 +44,10 @@ case_ "dwell of 1e300 s"                 2 "out of range" -- "$N" estimate dwell
 # move at the slowest feed. Every number written is finite, without an exponent.
 printf 'G21\no1 repeat [100000]\nG4 P99999.999\no1 endrepeat\nG1 X99999.999 F0.0001\nM2\n' > longest.ngc
 case_ "longest program, annotated"       0 "" -- "$N" annotate longest.ngc -m "$M" --no-removal
-core_check "... no inf, nan or exponent" no_odd_numbers out.txt
+check_ "... no inf, nan or exponent" no_odd_numbers out.txt
 case_ "longest program, JSON"            0 "" -- "$N" estimate longest.ngc -m "$M" --no-removal --json
-core_check "... no inf or nan" no_inf_nan out.txt
+check_ "... no inf or nan" no_inf_nan out.txt
 case_ "longest program, CSV"             0 "" -- "$N" estimate longest.ngc -m "$M" --no-removal --csv
-core_check "... no inf or nan" no_inf_nan out.txt
+check_ "... no inf or nan" no_inf_nan out.txt
 case_ "longest program, text"            0 "" -- "$N" estimate longest.ngc -m "$M" --no-removal
-core_check "... no inf, nan or exponent" no_odd_numbers out.txt
+check_ "... no inf, nan or exponent" no_odd_numbers out.txt

@@ -1,19 +1,8 @@
 # Post-processor hooks (postprocessor-templates/): hostile settings and file names must never run
-# a command or reach a file they do not name. Sourced by scripts/attack.sh: uses case_, $N, $M,
+# a command or reach a file they do not name. Sourced by scripts/attack.sh: uses case_, check_, $N, $M,
 # $P and $root, runs in its folder, adds to $failures.
 hook="$root/postprocessor-templates/generic/ncjoule-hook.sh"
 
-# hook_check NAME COMMAND...: one more case, held when the command succeeds.
-hook_check() {
-  local name="$1"
-  shift
-  if "$@"; then
-    printf "ok   %-34s\n" "$name"
-  else
-    printf "FAIL %-34s\n" "$name"
-    failures=$((failures + 1))
-  fi
-}
 # strips_to FILE ORIGINAL: FILE is ORIGINAL annotated (changed, and strip gives it back).
 strips_to() { ! cmp -s -- "$1" "$2" && "$N" strip -- "$1" 2> /dev/null | cmp -s - "$2"; }
 # holds TEXT FILE: FILE holds exactly TEXT.
@@ -27,8 +16,8 @@ cp "$P" hook_args.ngc
 case_ "hook: NCJOULE_ARGS '; touch X'" 1 "not annotated" -- \
   env NCJOULE_ARGS='--no-removal; touch X $(touch X) `touch X`' \
   bash "$hook" --strict --ncjoule "$N" --machine "$M" hook_args.ngc
-hook_check "hook: ... ran no command" test ! -e X
-hook_check "hook: ... left the file alone" cmp -s "$P" hook_args.ngc
+check_ "hook: ... ran no command" test ! -e X
+check_ "hook: ... left the file alone" cmp -s "$P" hook_args.ngc
 
 # A link in a watched folder to a file outside it: never followed, the target unchanged.
 mkdir hook_watch
@@ -37,21 +26,21 @@ ln -s ../hook_outside.ngc hook_watch/passwd.ngc
 case_ "hook: link out of a watched folder" 1 "symbolic link" -- \
   env NCJOULE_QUIET=0 bash "$hook" --strict --ncjoule "$N" --machine "$M" \
   --watch hook_watch --once --interval 0.2
-hook_check "hook: ... its target unchanged" cmp -s "$P" hook_outside.ngc
-hook_check "hook: ... the link still a link" test -L hook_watch/passwd.ngc
+check_ "hook: ... its target unchanged" cmp -s "$P" hook_outside.ngc
+check_ "hook: ... the link still a link" test -L hook_watch/passwd.ngc
 
 # A post's file named like an option is a file.
 cp "$P" ./-x.ngc
 case_ "hook: a file named -x.ngc" 0 "" -- bash "$hook" --strict --ncjoule "$N" --machine "$M" -x.ngc
-hook_check "hook: ... annotated" strips_to -x.ngc "$P"
+check_ "hook: ... annotated" strips_to -x.ngc "$P"
 
 # A name with a quote, as a Fusion post may write it, beside the name without it: each file is
 # its own (a hook that dropped the quote rewrote the other one).
 cp "$P" 'part"v2.nc'
 printf '%s' "$tiny" > partv2.nc
 case_ "hook: a name with a quote" 0 "" -- bash "$hook" --strict --ncjoule "$N" --machine "$M" 'part"v2.nc'
-hook_check "hook: ... the other file untouched" holds "$tiny" partv2.nc
-hook_check "hook: ... its own file annotated" strips_to 'part"v2.nc' "$P"
+check_ "hook: ... the other file untouched" holds "$tiny" partv2.nc
+check_ "hook: ... its own file annotated" strips_to 'part"v2.nc' "$P"
 
 # The same through the Fusion hook, with execute() run by a shell as on macOS and Linux.
 if command -v node > /dev/null 2>&1; then
@@ -78,7 +67,7 @@ if (warnings.length) { console.error(warnings.join("\n")); process.exit(1); }
 END
   case_ "fusion hook: quotes, \$(), blanks" 0 "" -- node fusion_post.js \
     "$root/postprocessor-templates/fusion360/ncjoule-hook.cps.js" "$N" "$M" "$quoted"
-  hook_check "fusion hook: ... ran no command" test ! -e X
-  hook_check "fusion hook: ... the other file untouched" holds "$tiny" "$bystander"
-  hook_check "fusion hook: ... its own file annotated" strips_to "$quoted" "$P"
+  check_ "fusion hook: ... ran no command" test ! -e X
+  check_ "fusion hook: ... the other file untouched" holds "$tiny" "$bystander"
+  check_ "fusion hook: ... its own file annotated" strips_to "$quoted" "$P"
 fi

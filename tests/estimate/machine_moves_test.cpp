@@ -5,22 +5,14 @@
 
 #include <cmath>
 
+#include "estimate_checks.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
 using namespace ncjoule;
+using namespace estimate_test;
 
 namespace {
-
-MachineProfile generic() {
-  return load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
-}
-
-bool warned(const Estimate& e, std::string_view words) {
-  for (const Diagnostic& d : e.diagnostics)
-    if (d.severity == Severity::Warning && d.message.find(words) != std::string::npos) return true;
-  return false;
-}
 
 // A Fusion-for-Haas-like program: home Z at the start, a 1 mm deep slot at F480 with a 20 mm
 // face mill positioned by high-feed G1 F5000 moves, G53 Z home between operations and at the

@@ -5,10 +5,12 @@
 
 #include <cmath>
 
+#include "estimate_checks.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
 using namespace ncjoule;
+using namespace estimate_test;
 
 namespace {
 
@@ -38,12 +40,6 @@ Estimate run(const std::string& program, const MachineProfile& machine,
 // Energy of the cutting component per mm^3 removed: what the material tables give.
 double cutting_sec(const Estimate& e) {
   return e.energy.components_j[std::size_t(PowerComponent::Cutting)] / e.energy.removed_mm3;
-}
-
-bool warned(const Estimate& e, const std::string& text) {
-  for (const Diagnostic& d : e.diagnostics)
-    if (d.severity == Severity::Warning && d.message.find(text) != std::string::npos) return true;
-  return false;
 }
 
 } // namespace

@@ -5,22 +5,14 @@
 
 #include <cmath>
 
+#include "estimate_checks.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
 using namespace ncjoule;
+using namespace estimate_test;
 
 namespace {
-
-MachineProfile generic() {
-  return load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
-}
-
-bool warned(const Estimate& e, std::string_view words) {
-  for (const Diagnostic& d : e.diagnostics)
-    if (d.severity == Severity::Warning && d.message.find(words) != std::string::npos) return true;
-  return false;
-}
 
 // Two passes of a 6 mm slot, 1.5 and 3 mm deep, with rapids at the clearance `up` mm from the
 // top: `z` is +1 for a standard machine, -1 for one whose +Z points into the work (Estlcam's

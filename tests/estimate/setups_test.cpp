@@ -6,16 +6,14 @@
 #include <cmath>
 
 #include "cam_stock.hpp"
+#include "estimate_checks.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 
 using namespace ncjoule;
+using namespace estimate_test;
 
 namespace {
-
-MachineProfile generic() {
-  return load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
-}
 
 // A 6 mm end mill pockets 40 x 20 x 3 mm in two passes, starting at X0 Y0 and returning up.
 std::string pocket() {
@@ -89,8 +87,8 @@ TEST_CASE("a job's stock per setup: the second given, the first from the cuts") 
   const Estimate e =
       estimate_program(make_source("flip.nc", two_sides("M0\nG55")), generic(), options);
   REQUIRE(e.setups.size() == 2);
-  CHECK(e.setups[0].stock_guessed);
-  CHECK_FALSE(e.setups[1].stock_guessed);
+  CHECK(e.setups[0].stock_source == StockSource::Guessed);
+  CHECK(e.setups[1].stock_source == StockSource::Given);
   CHECK(e.setups[1].stock.find("box") != std::string::npos);
   CHECK(e.setups[1].removed_mm3 > e.setups[0].removed_mm3 * 0.9);
 }

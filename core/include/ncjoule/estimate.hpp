@@ -206,11 +206,10 @@ struct PathPoint {
 
 // One setup of a program (a clamping of the part): where it starts, why, its stock and totals.
 struct SetupSummary {
-  int first_line = 0;            // 0-based source line of its first command
-  std::string reason;            // "the program's start", "M0 at line 41, then G55"
-  std::string stock;             // the stock it cuts, as RemovalResult::stock_description says
-  bool stock_guessed = true;     // the box of its own cuts, not a stock given
-  std::string stock_origin;      // who gave it (StockSpec::origin; empty when guessed)
+  int first_line = 0; // 0-based source line of its first command
+  std::string reason; // "the program's start", "M0 at line 41, then G55"
+  std::string stock;  // the stock it cuts, as RemovalResult::stock_description says
+  StockSource stock_source = StockSource::None; // given, the program's, guessed from its cuts
   std::optional<Box3> stock_box; // program coordinates, mm; empty: no stock simulated
   double time_s = 0, energy_j = 0, removed_mm3 = 0;
 };

@@ -114,6 +114,10 @@ enum class LengthUnit : std::uint8_t { Program, Mm, Inch };
 
 // What the user asked for. Default: the bounding box of the cutting moves (see
 // default_stock_box).
+// Where a stock came from: the user (an option, a job file, the user config), the program's own
+// CAM comments, or a guess from the cutting moves; None when there is no stock to cut.
+enum class StockSource : std::uint8_t { None, Given, Program, Guessed };
+
 struct StockSpec {
   enum class Kind { Default, Box, Stl } kind = Kind::Default;
   Box3 box; // Kind::Box, as written, in box_units (mm once in_mm() has run)
@@ -122,6 +126,7 @@ struct StockSpec {
   LengthUnit stl_units = LengthUnit::Program;
   // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", ...
   std::string origin;
+  bool stated_by_program = false; // read from the program's CAM comments (cam_stock.hpp)
   // The stock in millimetres for a program in inches (`program_inch`) or millimetres: values
   // written without a unit take the program's.
   StockSpec in_mm(bool program_inch) const;
@@ -417,10 +422,7 @@ struct RemovalResult {
   std::vector<CommandRemoval> commands; // parallel to Timeline::commands
   double removed_mm3 = 0;
   std::string stock_description; // which stock was used, e.g. "box ... (from cutting moves)"
-  // Where the stock came from: given (an option, a job file, the program's CAM comments) or
-  // guessed from the cutting moves; None when nothing is simulated.
-  enum class StockSource : std::uint8_t { None, Given, Guessed } stock_source = StockSource::None;
-  std::string stock_origin;     // who gave it (StockSpec::origin): "--stock", a file, a comment
+  StockSource stock_source = StockSource::None;
   Box3 stock_box;               // its bounds in program coordinates (mm), as the program writes Z
   std::size_t memory_bytes = 0; // memory held by the stock model
   std::vector<Diagnostic> diagnostics; // collisions, unknown tools, ...

@@ -110,8 +110,11 @@ def run_linuxcnc(tool, program, cache, key, expected_s, last_line, attempts=3):
 
 
 def run_ncjoule(ncjoule, program, machine):
+    # The simulator's tool table: cutter compensation offsets by its radii, as LinuxCNC does.
+    table = os.path.join(HERE, "machines", "linuxcnc-sim.tbl")
     r = subprocess.run([ncjoule, "estimate", program, "--machine", machine, "--no-removal",
-                        "--csv"], capture_output=True, text=True)
+                        "--tool-table", table, "--tool-units", "mm", "--csv"],
+                       capture_output=True, text=True)
     if r.returncode not in (0, 2) or not r.stdout:
         raise RuntimeError(f"ncjoule failed on {program}:\n{r.stderr[-2000:]}")
     per = {}

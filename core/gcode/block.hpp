@@ -25,6 +25,9 @@ struct Assignment {
   std::string_view target; // text after '#': "1", "<name>", "[expr]"
   std::string_view value;
   int column = 0;
+  // Fanuc macro B: the value is an expression without brackets ("#3=#1-#2*2"), read to the
+  // end of its operators with their precedence.
+  bool bare_expression = false;
 };
 
 // A word of two or more letters (Sinumerik MCALL, TRANS, CYCLE81(...), RPL=45; Fanuc macro B
@@ -59,6 +62,17 @@ private:
   std::string_view text_; // past 4 GiB positions do not fit: scanned instead
 };
 
+// Fanuc macro B control flow (Custom Macro B: "IF [c] GOTO n", "IF [c] THEN <assignment>",
+// "GOTO n", "WHILE [c] DO m", "DO m", "END m").
+enum class MacroFlow { None, If, Goto, While, Do, End };
+struct MacroStatement {
+  MacroFlow kind = MacroFlow::None;
+  std::string_view condition; // "[...]" of IF and WHILE
+  std::string_view target;    // the GOTO's N number or the DO/END loop number (a value)
+  bool then = false;          // IF ... THEN: the block's words and assignments run if true
+  int column = 0;
+};
+
 struct Block {
   std::string code;         // lower case, blanks and comments removed
   BracketMatches brackets;  // of code
@@ -80,13 +94,15 @@ struct Block {
                            // do, repeat, endrepeat, return, break, continue; empty: header
   std::string_view o_args; // the rest of the line after the keyword
   int o_column = 0;
+  MacroStatement macro;
   std::vector<Diagnostic> errors; // lexical errors (line numbers filled in by the caller)
   // Problems that cost one word or character, not the block: the rest of the block runs.
   std::vector<Diagnostic> warnings;
 
   void clear();
   bool has_code() const {
-    return !words.empty() || !assignments.empty() || !keywords.empty() || has_o;
+    return !words.empty() || !assignments.empty() || !keywords.empty() || has_o ||
+           macro.kind != MacroFlow::None;
   }
 };
 

@@ -87,7 +87,7 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
     Pending w{{}, 0, 0, a.column};
     std::string err;
     std::size_t off = 0;
-    if (!evaluate(a.value, params_, w.value, err, off)) {
+    if (!(a.bare_expression ? evaluate_bare : evaluate)(a.value, params_, w.value, err, off)) {
       error(a.column, err);
       ok = false;
       continue;

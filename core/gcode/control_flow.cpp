@@ -2,6 +2,7 @@
 // break/continue) and the subprogram calls of the Fanuc family (M98/M99, Haas M97, G65).
 #include "interpreter_impl.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -295,7 +296,7 @@ void Interpreter::macro_call(const BlockValues& v) {
   call_subroutine(it->second, std::move(args), true, repeats);
 }
 
-std::optional<std::size_t> Interpreter::local_subprogram_line(long n_number) {
+std::optional<std::size_t> Interpreter::n_number_line(long n_number) {
   if (!n_numbers_) {
     n_numbers_.emplace();
     for (std::size_t i = 0; i < source_.lines.size(); ++i) {
@@ -308,12 +309,22 @@ std::optional<std::size_t> Interpreter::local_subprogram_line(long n_number) {
       // A number too long for a long is no call target (nothing can call it).
       long num = 0;
       const auto [end, ec] = std::from_chars(l.data() + first, l.data() + k, num);
-      if (k > first && ec == std::errc() && end == l.data() + k) n_numbers_->emplace(num, i);
+      if (k > first && ec == std::errc() && end == l.data() + k) (*n_numbers_)[num].push_back(i);
     }
+    for (const auto& [number, line] : program_numbers_)
+      program_starts_.push_back(line);
+    std::sort(program_starts_.begin(), program_starts_.end());
   }
   auto it = n_numbers_->find(n_number);
   if (it == n_numbers_->end()) return std::nullopt;
-  return it->second - 1; // the N line itself is the body's first line
+  // The control searches the program it runs: prefer the N block between the O-number headers
+  // around the current line (a file's subprograms reuse N numbers).
+  const auto next = std::upper_bound(program_starts_.begin(), program_starts_.end(), pc_);
+  const std::size_t from = next == program_starts_.begin() ? 0 : *(next - 1);
+  const std::size_t to = next == program_starts_.end() ? source_.lines.size() : *next;
+  for (std::size_t line : it->second)
+    if (line >= from && line < to) return line;
+  return it->second.front();
 }
 
 void Interpreter::fanuc_call(const BlockValues& v, int m) {
@@ -332,7 +343,8 @@ void Interpreter::fanuc_call(const BlockValues& v, int m) {
     auto it = program_numbers_.find(p);
     if (it != program_numbers_.end()) target = it->second;
   } else {
-    target = local_subprogram_line(p);
+    target = n_number_line(p);
+    if (target) --*target; // the N line itself is the body's first line
   }
   if (!target && m == 98) {
     // A subprogram in the control's memory (O8000-O9999 and the shop's own): the program runs.

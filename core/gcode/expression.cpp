@@ -25,8 +25,9 @@ class Evaluator {
 public:
   Evaluator(std::string_view text, ParameterReader& params) : t_(text), params_(params) {}
 
-  bool run(double& value, std::string& error, std::size_t& offset) {
-    bool ok = primary(value) && pos_ == t_.size() && finite(value, 0);
+  // `bare`: the text is the inside of a pair of brackets (operators at the top level).
+  bool run(double& value, std::string& error, std::size_t& offset, bool bare = false) {
+    bool ok = (bare ? binary(value, 1) : primary(value)) && pos_ == t_.size() && finite(value, 0);
     if (ok) return true;
     if (error_.empty()) error_ = "unexpected text in value";
     error = error_;
@@ -382,6 +383,13 @@ bool evaluate(std::string_view text, ParameterReader& params, double& value, std
   if (parse_plain_number(text, value)) return true;
   Evaluator e(text, params);
   return e.run(value, error, offset);
+}
+
+bool evaluate_bare(std::string_view text, ParameterReader& params, double& value,
+                   std::string& error, std::size_t& offset) {
+  if (parse_plain_number(text, value)) return true;
+  Evaluator e(text, params);
+  return e.run(value, error, offset, true);
 }
 
 } // namespace ncjoule::detail

@@ -27,6 +27,11 @@ public:
 bool evaluate(std::string_view text, ParameterReader& params, double& value, std::string& error,
               std::size_t& offset);
 
+// Evaluates an expression written without its brackets, as the right side of a Fanuc macro B
+// assignment ("#1-#2*sin[30]"): the same as evaluate("[" + text + "]").
+bool evaluate_bare(std::string_view text, ParameterReader& params, double& value,
+                   std::string& error, std::size_t& offset);
+
 // Converts a program value to an integer type, saturating at the type's range (NaN gives 0):
 // casting an out-of-range double is undefined behaviour, and a program may well say G1e300.
 template <class Int> Int saturate(double value) {

@@ -264,6 +264,10 @@ InterpretResult Interpreter::run() {
       ++result_.blocks;
       ++result_.word_blocks;
       handle_o_word(block_);
+    } else if (block_.macro.kind != MacroFlow::None) {
+      ++result_.blocks;
+      ++result_.word_blocks;
+      if (macro_statement(block_) && evaluate_words(block_, values)) execute(block_, values);
     } else if (block_.has_code()) {
       ++result_.blocks;
       if (!block_.words.empty() || !block_.assignments.empty()) ++result_.word_blocks;

@@ -100,10 +100,17 @@ private:
                                        std::initializer_list<const char*> keywords) const;
   bool eval_condition(std::string_view args, int column, double& value);
   void call_subroutine(std::size_t target_line, std::vector<double> args, bool fanuc, int repeats);
-  void macro_call(const BlockValues& v);                           // G65
-  void fanuc_call(const BlockValues& v, int m);                    // M98, M97
-  void fanuc_return(const BlockValues& v);                         // M99
-  std::optional<std::size_t> local_subprogram_line(long n_number); // Haas M97 target
+  void macro_call(const BlockValues& v);        // G65
+  void fanuc_call(const BlockValues& v, int m); // M98, M97
+  void fanuc_return(const BlockValues& v);      // M99
+  // The line of block N<n_number> (Haas M97 target, Fanuc GOTO), in the program (O-number
+  // section) being run if it has one there.
+  std::optional<std::size_t> n_number_line(long n_number);
+  // Fanuc macro B control flow (macro_flow.cpp). Returns true when the block's own words run
+  // (IF [...] THEN whose condition holds).
+  bool macro_statement(const Block& b);
+  void macro_goto(const MacroStatement& m);
+  std::optional<std::size_t> macro_loop_match(std::size_t line, const MacroStatement& m);
   void return_from_subroutine(std::optional<double> value);
 
   // --- one block: its words (block_words.cpp) and its execution (convert*.cpp) ----------------
@@ -231,8 +238,10 @@ private:
   std::vector<Frame> frames_;
   LabelIndex labels_;                                     // where each O-word label is, by keyword
   std::unordered_map<long, std::size_t> program_numbers_; // Fanuc O-number -> line
-  std::optional<std::unordered_map<long, std::size_t>> n_numbers_; // Haas M97 targets
-  std::size_t loop_iterations_ = 0;                                // backward jumps of loops
+  std::optional<std::unordered_map<long, std::vector<std::size_t>>> n_numbers_; // M97, GOTO
+  std::vector<std::size_t> program_starts_; // O-number header lines, in order
+  std::unordered_map<std::size_t, std::size_t> macro_loop_matches_; // WHILE/DO <-> END m lines
+  std::size_t loop_iterations_ = 0;                                 // backward jumps of loops
   std::size_t blocks_run_ = 0;
   // Diagnostics already given, by line, column and message; looked up by a view of the message,
   // so that a repeat, as a loop gives them, costs no copy.

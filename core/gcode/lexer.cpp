@@ -115,6 +115,7 @@ void Block::clear() {
   o_keyword.clear();
   o_args = {};
   o_column = 0;
+  macro = {};
   errors.clear();
 }
 
@@ -161,6 +162,107 @@ std::size_t value_length(std::string_view t, std::size_t pos, const BracketMatch
   const std::size_t n = operand_length(t, i, brackets);
   return n ? i - pos + n : 0;
 }
+
+namespace {
+
+// Fanuc macro B writes an assignment's value without brackets ("#610=#597-#601", "#1=#2*SIN[#3]"):
+// from the end of its first operand at `pos`, the length of the operators and operands that
+// follow it. An operator is taken only when an operand follows, so "#1=2 X5" ends at "2".
+std::size_t bare_tail_length(std::string_view t, std::size_t pos, const BracketMatches* brackets) {
+  static constexpr std::string_view kOperators[] = {
+      "**", "*", "/", "+", "-", "mod", "and", "xor", "or", "eq", "ne", "gt", "ge", "lt", "le"};
+  std::size_t end = pos;
+  for (;;) {
+    std::size_t operand = 0, op_len = 0;
+    for (std::string_view op : kOperators) {
+      if (t.compare(end, op.size(), op) != 0) continue;
+      operand = value_length(t, end + op.size(), brackets);
+      if (operand) {
+        op_len = op.size();
+        break;
+      }
+    }
+    if (!operand) return end - pos;
+    end += op_len + operand;
+  }
+}
+
+// Reads a Fanuc macro B control statement at code[p] into b.macro; returns where the block's
+// remaining words start (after THEN), code.size() when the statement takes the whole block, or
+// p when there is none.
+std::size_t lex_macro_statement(std::string_view code, std::size_t p, Block& b) {
+  const BracketMatches* brackets = &b.brackets;
+  auto keyword = [&](std::string_view k) { return code.compare(p, k.size(), k) == 0; };
+  auto loop_number = [&](std::size_t at) -> std::size_t {
+    std::size_t len = value_length(code, at, brackets);
+    if (!len) return 0;
+    b.macro.target = code.substr(at, len);
+    return at + len;
+  };
+  auto goto_at = [&](std::size_t at) -> std::size_t {
+    if (code.compare(at, 4, "goto") != 0) return 0;
+    std::size_t len = value_length(code, at + 4, brackets);
+    if (!len) {
+      add_error(b, b.columns[at], "GOTO needs the N number to go to");
+      return code.size();
+    }
+    b.macro.target = code.substr(at + 4, len);
+    return at + 4 + len;
+  };
+  auto condition_at = [&](std::size_t at) -> std::size_t {
+    std::size_t len = at < code.size() && code[at] == '[' ? bracket_length(code, at, brackets) : 0;
+    if (!len) return 0;
+    b.macro.condition = code.substr(at, len);
+    return at + len;
+  };
+  b.macro.column = b.columns[p];
+  std::size_t end = 0;
+  if (keyword("if[")) {
+    b.macro.kind = MacroFlow::If;
+    const std::size_t c = condition_at(p + 2);
+    if (!c) {
+      add_error(b, b.columns[p + 2], "IF needs a condition in brackets: IF [...] GOTO n");
+      return code.size();
+    }
+    if (code.compare(c, 4, "then") == 0) {
+      b.macro.then = true;
+      return c + 4;
+    }
+    end = goto_at(c);
+    if (!end) {
+      add_error(b, c < code.size() ? b.columns[c] : b.columns[p],
+                "IF [...] must be followed by GOTO n or THEN");
+      return code.size();
+    }
+  } else if (keyword("while[")) {
+    b.macro.kind = MacroFlow::While;
+    const std::size_t c = condition_at(p + 5);
+    end = c && code.compare(c, 2, "do") == 0 ? loop_number(c + 2) : 0;
+    if (!end) {
+      add_error(b, b.columns[p], "WHILE needs a condition in brackets and DO m: WHILE [...] DO1");
+      return code.size();
+    }
+  } else if (keyword("goto")) {
+    b.macro.kind = MacroFlow::Goto;
+    end = goto_at(p);
+  } else if (const std::size_t n = keyword("do")    ? 2
+                                   : keyword("end") ? 3
+                                                    : 0;
+             n && p + n < code.size() && (is_digit(code[p + n]) || code[p + n] == '#')) {
+    b.macro.kind = n == 2 ? MacroFlow::Do : MacroFlow::End;
+    end = loop_number(p + n);
+  } else {
+    b.macro.column = 0;
+    return p;
+  }
+  if (end < code.size())
+    add_error(b, b.columns[end],
+              "unexpected '" + std::string(code.substr(end)) +
+                  "' after a macro statement (it takes the whole block)");
+  return code.size();
+}
+
+} // namespace
 
 void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
   b.clear();
@@ -281,6 +383,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
     b.o_args = code.substr(k);
     return;
   }
+  if (dialect.g65_macro_calls && p < code.size()) p = lex_macro_statement(code, p, b);
   // Bytes p and p + 1 of code were next to each other in the source (no blank or comment).
   auto adjacent = [&](std::size_t q) { return b.columns[q + 1] == b.columns[q] + 1; };
   while (p < code.size()) {
@@ -352,8 +455,11 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
                   "expected a value after '='");
         return;
       }
-      b.assignments.push_back({code.substr(t0, t1 - t0), code.substr(t1 + 1, len), b.columns[p]});
-      p = t1 + 1 + len;
+      const std::size_t tail =
+          dialect.g65_macro_calls ? bare_tail_length(code, t1 + 1 + len, brackets) : 0;
+      b.assignments.push_back(
+          {code.substr(t0, t1 - t0), code.substr(t1 + 1, len + tail), b.columns[p], tail > 0});
+      p = t1 + 1 + len + tail;
     } else {
       // Characters no controller family here gives a meaning to: skipped with a warning.
       std::size_t q = p + 1;

@@ -159,3 +159,48 @@ TEST_CASE("a block number too long for any number is no local subprogram, and no
   CHECK(m[1].end.y == doctest::Approx(5));
   CHECK(m[2].end.x == doctest::Approx(1));
 }
+
+TEST_CASE("Fanuc macro B assignments take an expression without brackets") {
+  // Fanuc Custom Macro B: "#i = <expression>" with operators by precedence, no brackets needed
+  // around the whole right side (#610 = #597 - #601 in a probing macro).
+  const std::string program = "O0001\nG21 G90 G0 X0 Y0 Z5\n#1 = 2 + 3 * 2\n#2 = #1 - 1\n"
+                              "#3 = #1 / 4 + ABS[-1] * 2\n#4 = 7 MOD 4\n"
+                              "G0 X#2 Y#3 Z#4\n#5 = 1 G0 X#5\nM30\n";
+  const Toolpath p = run(program, "fanuc");
+  CHECK(errors(p) == 0);
+  CHECK(with_severity(p, Severity::Warning).empty());
+  // #1 = 8, #2 = 7, #3 = 4, #4 = 3; "#5 = 1 G0 X#5" ends the value at "1" (the block's
+  // assignments take effect after its words, so X reads the #5 from before: vacant, 0).
+  const std::vector<std::string> expected = {T(0, 0, 5), T(7, 4, 3), T(0, 4, 3)};
+  CHECK(moves(p) == expected);
+  // LinuxCNC reads one value after '=': the operators after it are not part of it.
+  CHECK(!with_severity(run("G21\n#1 = 2 + 3\nM2\n", "linuxcnc"), Severity::Warning).empty());
+}
+
+TEST_CASE("Fanuc macro B control flow: WHILE DO END, IF GOTO, IF THEN, GOTO") {
+  // Fanuc Custom Macro B (Operator's Manual, "Branch and repetition"): the loop runs three times,
+  // IF ... THEN assigns, IF ... GOTO and GOTO skip the blocks between.
+  const std::string program = "O0001\nG21 G90 G0 X0 Y0 Z5\n#1 = 0\nWHILE [#1 LT 3] DO1\n"
+                              "#1 = #1 + 1\nG1 X#1 F100\nEND1\nIF [#1 EQ 3] THEN #2 = 10\n"
+                              "IF [#1 EQ 4] THEN #2 = 20\nG0 Y#2\nIF [#2 GT 5] GOTO 100\n"
+                              "G0 Z50\nN100 G0 Z6\nGOTO200\nG0 Z60\nN200 M30\n";
+  const Toolpath p = run(program, "fanuc");
+  CHECK(errors(p) == 0);
+  CHECK(with_severity(p, Severity::Warning).empty());
+  const std::vector<std::string> expected = {T(0, 0, 5), F(1, 0, 5),  F(2, 0, 5),
+                                             F(3, 0, 5), T(3, 10, 5), T(3, 10, 6)};
+  CHECK(moves(p) == expected);
+  // A GOTO searches the program being run: the subprogram's N10, not the main program's.
+  const Toolpath sub = run("O0001\nG21 G0 X0 Y0 Z5\nM98 P2000\nN10 G0 X1\nM30\n"
+                           "O2000\nGOTO 10\nG0 Y9\nN10 G0 Y2\nM99\n",
+                           "fanuc");
+  CHECK(errors(sub) == 0);
+  const std::vector<std::string> sub_expected = {T(0, 0, 5), T(0, 2, 5), T(1, 2, 5)};
+  CHECK(moves(sub) == sub_expected);
+  // What the control alarms on: a GOTO to no block, a loop without its END, a bare IF.
+  CHECK(errors(run("O1\nG21\nGOTO 99\nG0 X1\nM30\n", "fanuc")) == 1);
+  CHECK(errors(run("O1\nG21\n#1=5\nWHILE [#1 LT 1] DO1\n#1=1\nM30\n", "fanuc")) == 1);
+  CHECK(errors(run("O1\nG21\nIF [1 EQ 1] G0 X1\nM30\n", "fanuc")) == 1);
+  // An endless DO loop stops at the loop guard, with an error, not a hang.
+  CHECK(errors(run("O1\nG21\nDO1\nG0 X1\nEND1\nM30\n", "fanuc")) == 1);
+}

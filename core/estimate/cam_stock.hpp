@@ -3,8 +3,10 @@
 //
 // Read: Carbide Create's "(stockMin:-150.00mm, -100.00mm, -8.00mm)" and
 // "(stockMax:150.00mm, 100.00mm, 0.00mm)", and the same words spelt "STOCK MIN" / "STOCK MAX"
-// with ':' or '='. A stock given only by its size ("(STOCK 4.125 x 3.625 x 1.000)") says not
-// where it sits, so it is not used.
+// with ':' or '='; the APT-style "(STOCK/BLOCK,300.00, 200.00, 8.00,150.00, 100.00, 8.00)"
+// (size, then the work origin from the stock's low corner); and a size alone ("(STOCK 4.125 x
+// 3.625 x 1.000)", "(STOCK SIZE: 100 X 60 X 20)"), which says not where the stock sits: it is
+// placed where the cutting moves fit it (place_sized_stock in removal.hpp), and says so.
 #pragma once
 
 #include <optional>
@@ -26,5 +28,7 @@ struct StockCorner {
   std::pair<double, LengthUnit> xyz[3];
 };
 std::optional<StockCorner> stock_corner_of_comment(std::string_view comment);
+// One comment's whole stock: STOCK/BLOCK or a size alone (exposed for tests).
+std::optional<StockSpec> stock_box_of_comment(std::string_view comment);
 
 } // namespace ncjoule::estimate_detail

@@ -96,12 +96,23 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   // The stock.
   switch (spec.kind) {
   case StockSpec::Kind::Box: {
-    Box3 box = spec.box;
-    if (options.mirror_z) box.zmin = -spec.box.zmax, box.zmax = -spec.box.zmin;
+    Box3 placed = spec.box;
+    std::string how;
+    if (spec.size_only) {
+      std::optional<Box3> cuts = extent.box(tools_);
+      if (cuts && options.mirror_z)
+        *cuts = Box3{cuts->xmin, cuts->ymin, -cuts->zmax, cuts->xmax, cuts->ymax, -cuts->zmin};
+      placed = place_sized_stock(spec.box, cuts, how);
+    }
+    Box3 box = placed;
+    if (options.mirror_z) box.zmin = -placed.zmax, box.zmax = -placed.zmin;
     // A stock the program's comments state says so; others are given by the user.
-    stock_ = make_box_stock(box, format_box(spec.box) + (spec.stated_by_program
-                                                             ? " (from " + spec.origin + ")"
-                                                             : " (given)"));
+    stock_ = make_box_stock(
+        box, format_box(placed) +
+                 (spec.stated_by_program
+                      ? " (from " + spec.origin +
+                            (spec.size_only ? "; placed where the cuts fit it: " + how : "") + ")"
+                      : " (given)"));
     break;
   }
   case StockSpec::Kind::Stl: {

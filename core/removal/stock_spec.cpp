@@ -111,6 +111,37 @@ bool StockSpec::follows_program_units() const {
   return false;
 }
 
+Box3 place_sized_stock(const Box3& size, const std::optional<Box3>& cuts, std::string& how) {
+  const double extent[3] = {size.xmax - size.xmin, size.ymax - size.ymin, size.zmax - size.zmin};
+  // How much of [lo, hi] lies outside [a, b].
+  const auto outside = [](double lo, double hi, double a, double b) {
+    return std::max(0.0, a - lo) + std::max(0.0, hi - b);
+  };
+  double lo[3], hi[3];
+  how.clear();
+  static const char* const names[] = {"X", "Y"};
+  for (int i = 0; i < 2; ++i) {
+    const double w = extent[i];
+    const double starts[3] = {0, -w / 2, -w};
+    static const char* const placed[] = {" from 0", " centred", " up to 0"};
+    int best = 0;
+    if (cuts) {
+      const double c_lo = i == 0 ? cuts->xmin : cuts->ymin, c_hi = i == 0 ? cuts->xmax : cuts->ymax;
+      double least = outside(c_lo, c_hi, starts[0], starts[0] + w);
+      for (int k = 1; k < 3; ++k)
+        if (const double o = outside(c_lo, c_hi, starts[k], starts[k] + w); o < least - 1e-9)
+          least = o, best = k;
+    }
+    lo[i] = starts[best], hi[i] = starts[best] + w;
+    how += std::string(i ? ", " : "") + names[i] + placed[best];
+  }
+  const double h = extent[2];
+  const bool above = cuts && cuts->zmin >= 0; // nothing cuts below Z0: Z0 is the stock's bottom
+  lo[2] = above ? 0 : -h, hi[2] = above ? h : 0;
+  how += above ? ", bottom at Z0" : ", top at Z0";
+  return Box3{lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
+}
+
 std::string stock_mismatch(const Box3& stock, const Box3& cuts, const StockSpec& spec,
                            bool program_inch) {
   const double stock_size = std::max(stock.xmax - stock.xmin, stock.ymax - stock.ymin);

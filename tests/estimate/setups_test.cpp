@@ -111,6 +111,55 @@ TEST_CASE("CAM comments' stock corners: Carbide Create's and the spelt-out form"
   }
 }
 
+TEST_CASE("CAM comments' whole stocks: STOCK/BLOCK and a size alone, placed where the cuts fit") {
+  using estimate_detail::stock_box_of_comment;
+  // Carbide Create's APT line: 300 x 200 x 8 with the work origin 150, 100, 8 from the stock's
+  // low corner: the same box as its stockMin/stockMax lines.
+  const auto block = stock_box_of_comment("STOCK/BLOCK,300.00, 200.00, 8.00,150.00, 100.00, 8.00");
+  REQUIRE(block);
+  CHECK_FALSE(block->size_only);
+  CHECK(block->box.xmin == -150);
+  CHECK(block->box.ymax == 100);
+  CHECK(block->box.zmin == -8);
+  CHECK(block->box.zmax == 0);
+  const auto size = stock_box_of_comment("STOCK 4.125 x 3.625 x 1.000 ");
+  REQUIRE(size);
+  CHECK(size->size_only);
+  CHECK(size->box.xmax == 4.125);
+  CHECK(size->box_units[0] == LengthUnit::Program);
+  CHECK(stock_box_of_comment("STOCK SIZE: 100 X 60 X 20mm"));
+  for (const char* not_one : {"Stock is 30mm diameter Acetal Rod", "STOCK 4 x 3",
+                              "stock/block,1,2,3", "STOCK 0 x 3 x 1"}) {
+    CAPTURE(std::string(not_one));
+    CHECK_FALSE(stock_box_of_comment(not_one));
+  }
+  // Placement: 100 x 60 x 20 around cuts at X 5-95 (from 0), Y -25-25 (centred), below Z0.
+  std::string how;
+  const Box3 sized{0, 0, 0, 100, 60, 20};
+  Box3 at = place_sized_stock(sized, Box3{5, -25, -10, 95, 25, 0}, how);
+  CHECK(at.xmin == 0);
+  CHECK(at.ymin == -30);
+  CHECK(at.zmin == -20);
+  CHECK(at.zmax == 0);
+  CHECK(how == "X from 0, Y centred, top at Z0");
+  // Cuts to the left of X0 and all above Z0 (the origin on the table): up to 0, bottom at Z0.
+  at = place_sized_stock(sized, Box3{-90, 2, 5, -10, 50, 20}, how);
+  CHECK(at.xmax == 0);
+  CHECK(at.zmin == 0);
+  CHECK(how == "X up to 0, Y from 0, bottom at Z0");
+  // The estimate reads it, says where it came from and how it is placed.
+  const std::string program = "%\nO2001\n(STOCK 100 x 60 x 20)\nG21 G90\n"
+                              "(T1 D=10. CR=0. - ZMIN=-2. - FLAT END MILL)\nT1 M6\nS8000 M3\n"
+                              "G0 X10 Y10 Z5\nG1 Z-2 F200\nG1 X90 F800\nG0 Z5\nM30\n%\n";
+  const Estimate e = estimate_program(make_source("o2001.nc", program), generic(), {});
+  REQUIRE(e.removal);
+  CHECK(e.removal->stock_source == StockSource::Program);
+  CHECK(e.removal->stock_description.find("placed where the cuts fit it: X from 0, Y from 0, top "
+                                          "at Z0") != std::string::npos);
+  // A 10 mm slot 2 mm deep from X10 to X90 (plunge included): 80 x 10 x 2 + the half-disc ends.
+  CHECK(e.energy.removed_mm3 == doctest::Approx(80 * 10 * 2 + 3.14159265 * 25 * 2).epsilon(0.03));
+}
+
 TEST_CASE("G41 in control offsets the contour, in wear (job or profile) it runs as programmed") {
   // A 40 x 40 square contour with G41 D1, the 10 mm tool described in a comment: in control the
   // tool runs a radius outside. rs274 (a tool table with this tool) gives the path: entry 26.7,

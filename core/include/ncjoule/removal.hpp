@@ -127,6 +127,9 @@ struct StockSpec {
   // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", ...
   std::string origin;
   bool stated_by_program = false; // read from the program's CAM comments (cam_stock.hpp)
+  // Kind::Box known by its size only ("(STOCK 4.125 x 3.625 x 1.000)"): `box` runs from 0 to
+  // the size, and the stock is placed where the cutting moves fit it (place_sized_stock).
+  bool size_only = false;
   // The stock in millimetres for a program in inches (`program_inch`) or millimetres: values
   // written without a unit take the program's.
   StockSpec in_mm(bool program_inch) const;
@@ -149,6 +152,13 @@ std::optional<StockSpec> parse_stock_spec(std::string_view text,
 // it fits. The sentence names the unit mix-up it likely is.
 std::string stock_mismatch(const Box3& stock_mm, const Box3& cuts_mm, const StockSpec& spec,
                            bool program_inch);
+// Where a stock known by its size only sits: on each axis X and Y the placement a CAM origin
+// takes (at the stock's low corner, its centre, or its high corner) that leaves the least of
+// the cutting moves' box `cuts` outside; in Z the top at Z0, or the bottom at Z0 when the cuts
+// are above it. Ties go to the low corner in X/Y and to the top at Z0; without cuts, the low
+// corner and the top at Z0. `how` says the placement chosen ("X from 0, Y centred, top at Z0").
+Box3 place_sized_stock(const Box3& size, const std::optional<Box3>& cuts, std::string& how);
+
 // A length with an optional unit ("12.5", "-1in", "3mm", "0.5\""): its number and unit; nullopt
 // when it is not one.
 std::optional<std::pair<double, LengthUnit>> parse_length(std::string_view text);

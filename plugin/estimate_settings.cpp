@@ -66,6 +66,13 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "Units of the tool table's lengths and diameters (the machine's units): mm "
                  "(default) or inch")
       ->check(CLI::IsMember({"mm", "inch"}));
+  cmd.add_option("--macro-dir", s.macro_dirs,
+                 "Folder of the programs the control holds (O9xxx macros, probing cycles, "
+                 "LinuxCNC subroutine files: O9810.nc, probe.ngc): a call to a program not in "
+                 "the file runs the one found there (repeatable; searched before the profile's "
+                 "[setup] macro_dirs)")
+      ->check(CLI::ExistingDirectory)
+      ->allow_extra_args(false);
   cmd.add_option("--engine", s.engine, "Removal engine: dexel (default) or voxel")
       ->check(CLI::IsMember({"dexel", "voxel"}));
   cmd.add_option("--grid", s.grid_mm,
@@ -183,6 +190,7 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
       if (d.severity == Severity::Error) return exit_code = kInputError, std::nullopt;
   }
   options.simulate_removal = !s.no_removal;
+  options.macro_dirs = s.macro_dirs;
   if (!s.material.empty() && !find_material(s.material)) {
     std::cerr << "ncjoule: unknown material '" << s.material << "'; known materials:";
     for (const Material& m : materials())

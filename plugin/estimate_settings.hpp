@@ -22,6 +22,7 @@ struct EstimateSettings {
   std::string tool_table;         // LinuxCNC .tbl
   std::string material;           // workpiece material; empty: the job file's, else the profile's
   std::string tool_units;         // units of the tool table: "mm" (empty) or "inch"
+  std::vector<std::string> macro_dirs; // --macro-dir: folders of the control's programs
   std::string engine = "dexel";
   double grid_mm = 0;
   double memory_limit_mib = 0; // 0: default_memory_budget_bytes()
@@ -33,7 +34,8 @@ struct EstimateSettings {
   TextOrigin program_stock_origin, config_stock_origin; // where those two stocks are written
 };
 
-// Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --engine,
+// Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --macro-dir,
+// --engine,
 // --grid, --no-removal, --co2 and --price to a subcommand.
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
 

@@ -259,6 +259,11 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   interpreter.cutter_compensation = options.cutter_compensation;
   interpreter.default_cutter_compensation = setup.cutter_compensation;
   interpreter.comp_radius_mm = comp_radii;
+  std::vector<Diagnostic> macro_problems; // control programs that could not be read
+  std::vector<std::string> macro_dirs = options.macro_dirs;
+  macro_dirs.insert(macro_dirs.end(), setup.macro_dirs.begin(), setup.macro_dirs.end());
+  if (!macro_dirs.empty())
+    interpreter.control_programs = control_programs_in(std::move(macro_dirs), macro_problems);
   const bool offsets_given = !setup.work_offsets.empty();
 
   const std::size_t budget = options.removal.memory_budget_bytes
@@ -286,6 +291,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   e.commands = run.commands;
   e.program_end = run.program_end;
   add_diagnostics(e, std::move(run.diagnostics), source.path);
+  add_diagnostics(e, std::move(macro_problems), source.path);
   add_diagnostics(e, first_view.take_diagnostics(), source.path);
   if (!run.units_given && run.word_blocks > 0)
     add_diagnostics(e,

@@ -57,18 +57,32 @@ CanonCommand MachineMoves::view(const CanonCommand& command) {
   if (!is_move(c.kind)) return c;
   if (!(c.machine_axes & kZ)) highest_z_ = std::max({highest_z_, c.start.z, c.end.z});
   if (!offsets_given_) {
-    // Without offsets, Z home is above the work: the tool stays there until Z is programmed.
-    if (lifted_) {
-      c.start.z = home;
-      if (c.end.z == programmed_z_ && !(c.machine_axes & kZ))
-        c.end.z = home;
-      else
-        lifted_ = false;
-    }
-    if (c.machine_axes & kZ) {
-      lifted_ = true;
-      programmed_z_ = c.end.z;
-      c.end.z = home;
+    // Without offsets, Z home is above the work, and X/Y home where the profile puts it: the
+    // tool stays at such a position until the program moves that axis again.
+    double* start[3] = {&c.start.x, &c.start.y, &c.start.z};
+    double* end[3] = {&c.end.x, &c.end.y, &c.end.z};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const bool machine = c.machine_axes & (1u << i);
+      Held& h = held_[i];
+      if (h.on) {
+        *start[i] = i == 2 ? home : h.at;
+        if (*end[i] == h.programmed && !machine)
+          *end[i] = i == 2 ? home : h.at;
+        else
+          h.on = false;
+      }
+      if (!machine) continue;
+      if (i == 2) {
+        h = {true, *end[i], home};
+      } else if (setup_.xy_home_in_work_mm) {
+        // The interpreter put the axis at its machine coordinate as if the work were at home.
+        const double home_xy =
+            i == 0 ? setup_.xy_home_in_work_mm->first : setup_.xy_home_in_work_mm->second;
+        h = {true, *end[i], home_xy + *end[i]};
+      } else {
+        continue;
+      }
+      *end[i] = h.at;
     }
   } else if (setup_.travel) {
     check_travel(c);

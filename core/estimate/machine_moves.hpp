@@ -8,13 +8,17 @@
 // or Hurco they send it up to Z home. So without offsets a move that sends Z to a machine
 // position ends at the machine's Z home, taken to be `z_home_above_work_mm` above the highest
 // point the program reaches (and at least above its Z0), and the tool stays there until the
-// program moves Z again. Such moves never cut and never size the default stock.
+// program moves Z again. Such moves never cut and never size the default stock. A move that
+// sends X or Y to a machine position goes where the profile's `xy_home_in_work_mm` puts machine
+// X/Y home (Haas and Fusion posts end with `G53 G0 X.. Y0.` to bring the table forward);
+// without it, to the machine coordinate read as a work coordinate, as rs274 does.
 //
 // The view also checks what only the machine's coordinates tell: a position past the travel
 // limits (when offsets and limits are given), and a switch between work offsets nothing
 // describes (taken at one place: the time of the move between them is not known).
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <vector>
@@ -48,10 +52,16 @@ private:
   bool offsets_given_ = false;
   std::optional<double> home_z_; // fixed; none: follows highest_z_
   std::string file_;
-  bool lifted_ = false;     // the tool is at Z home since a machine move
-  double programmed_z_ = 0; // where the interpreter thinks Z is meanwhile
-  double highest_z_ = 0;    // at least the program's Z0
-  int first_offset_ = 0;    // the first work offset the program selects (1 = G54)
+  // An axis held at a machine position since a machine move (Z home; X/Y home where the
+  // profile names it), until the program moves it again.
+  struct Held {
+    bool on = false;
+    double programmed = 0; // where the interpreter thinks the axis is meanwhile
+    double at = 0;         // where it is, in work coordinates (Z: home_z())
+  };
+  std::array<Held, 3> held_{};
+  double highest_z_ = 0; // at least the program's Z0
+  int first_offset_ = 0; // the first work offset the program selects (1 = G54)
   bool warned_offsets_ = false, warned_travel_ = false;
   Pose work_offset_{}, axis_offset_{};
   double tool_length_ = 0;

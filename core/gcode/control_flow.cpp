@@ -26,6 +26,12 @@ bool Interpreter::eval_condition(std::string_view args, int column, double& valu
   return true;
 }
 
+// What a warning about a program not found adds when folders of the control's programs were
+// searched too.
+std::string Interpreter::not_in_folders() const {
+  return options_.control_programs ? " nor in the macro folders" : "";
+}
+
 void Interpreter::call_subroutine(std::size_t target_line, std::vector<double> args, bool fanuc,
                                   int repeats) {
   if (frames_.size() >= 100) {
@@ -136,11 +142,14 @@ void Interpreter::o_call(const Block& b) {
     args.push_back(v);
     p += len;
   }
-  const std::optional<std::size_t> sub = labels_.last(label, "sub");
+  std::optional<std::size_t> sub = labels_.last(label, "sub");
+  if (!sub && label.size() > 2 && label.front() == '<' &&
+      load_control_program(label.substr(1, label.size() - 2)))
+    sub = labels_.last(label, "sub");
   if (!sub) {
     // LinuxCNC finds o<name> in a file on the config's SUBROUTINE_PATH: the program runs.
-    warning(col, "subroutine o" + label +
-                     " is not defined in this file: the control reads it from its subroutine "
+    warning(col, "subroutine o" + label + " is not defined in this file" + not_in_folders() +
+                     ": the control reads it from its subroutine "
                      "path; its time is not counted (call skipped)");
     return;
   }
@@ -173,7 +182,7 @@ void Interpreter::o_if(const Block& b) {
       stop();
       return;
     }
-    lex_line(source_.line_text(*branch), dialect_, other);
+    lex_line(line_text(*branch), dialect_, other);
     if (other.o_keyword == "elseif") {
       at = *branch;
       args = other.o_args;
@@ -277,11 +286,14 @@ void Interpreter::macro_call(const BlockValues& v) {
     return;
   }
   auto it = program_numbers_.find(std::lround(*v['p']));
+  if (it == program_numbers_.end() && load_control_program(std::to_string(std::lround(*v['p']))))
+    it = program_numbers_.find(std::lround(*v['p']));
   if (it == program_numbers_.end()) {
     // Probing and shop macros (O9000-O9999, Renishaw's O9810...) live in the control's memory:
     // the program runs; only this call's time is unknown.
     warning(v.column['p' - 'a'], "macro program O" + std::to_string(std::lround(*v['p'])) +
-                                     " is not in this file: the control holds it; its time is "
+                                     " is not in this file" + not_in_folders() +
+                                     ": the control holds it; its time is "
                                      "not counted (call skipped)");
     return;
   }
@@ -299,8 +311,8 @@ void Interpreter::macro_call(const BlockValues& v) {
 std::optional<std::size_t> Interpreter::n_number_line(long n_number) {
   if (!n_numbers_) {
     n_numbers_.emplace();
-    for (std::size_t i = 0; i < source_.lines.size(); ++i) {
-      std::string_view l = source_.line_text(i);
+    for (std::size_t i = 0; i < line_count_; ++i) {
+      std::string_view l = line_text(i);
       std::size_t k = l.find_first_not_of(" \t/");
       if (k == std::string_view::npos || (l[k] != 'n' && l[k] != 'N')) continue;
       const std::size_t first = ++k;
@@ -321,7 +333,7 @@ std::optional<std::size_t> Interpreter::n_number_line(long n_number) {
   // around the current line (a file's subprograms reuse N numbers).
   const auto next = std::upper_bound(program_starts_.begin(), program_starts_.end(), pc_);
   const std::size_t from = next == program_starts_.begin() ? 0 : *(next - 1);
-  const std::size_t to = next == program_starts_.end() ? source_.lines.size() : *next;
+  const std::size_t to = next == program_starts_.end() ? line_count_ : *next;
   for (std::size_t line : it->second)
     if (line >= from && line < to) return line;
   return it->second.front();
@@ -341,6 +353,8 @@ void Interpreter::fanuc_call(const BlockValues& v, int m) {
       p %= 10000;
     }
     auto it = program_numbers_.find(p);
+    if (it == program_numbers_.end() && load_control_program(std::to_string(p)))
+      it = program_numbers_.find(p);
     if (it != program_numbers_.end()) target = it->second;
   } else {
     target = n_number_line(p);
@@ -348,8 +362,9 @@ void Interpreter::fanuc_call(const BlockValues& v, int m) {
   }
   if (!target && m == 98) {
     // A subprogram in the control's memory (O8000-O9999 and the shop's own): the program runs.
-    warning(v.column['p' - 'a'], "subprogram O" + std::to_string(p) +
-                                     " is not in this file: the control holds it; its time is "
+    warning(v.column['p' - 'a'], "subprogram O" + std::to_string(p) + " is not in this file" +
+                                     not_in_folders() +
+                                     ": the control holds it; its time is "
                                      "not counted (call skipped)");
     return;
   }

@@ -86,6 +86,7 @@ void Interpreter::convert_comments(const Block& b) {
 void Interpreter::convert_other_codes(const BlockValues& v) {
   for (int code : v.g) {
     if (g_group(code) >= 0) continue;
+    if (convert_additional_work_offset(code, v)) continue;
     if (is_planner_hint_g(code, dialect_)) {
       std::string text = g_name(code);
       for (char letter : {'p', 'q', 'e', 'r', 'l'})

@@ -74,17 +74,43 @@ void Interpreter::convert_coordinate_system(const BlockValues& v) {
     int index = 0;
     if (code >= 540 && code <= 590 && code % 10 == 0) index = (code - 530) / 10;
     if (code >= 591 && code <= 593) index = 6 + (code - 590);
-    if (!index) continue;
-    const Pose old = g5x_[g5x_index_], neu = g5x_[index];
-    pos_.x += old.x - neu.x, pos_.y += old.y - neu.y, pos_.z += old.z - neu.z;
-    pos_.a += old.a - neu.a, pos_.b += old.b - neu.b, pos_.c += old.c - neu.c;
-    g5x_index_ = index;
-    params_.at(param::kCoordSystem) = index;
-    CanonCommand c = make(CanonKind::WorkOffset);
-    c.value = index;
-    c.end = neu;
-    emit(std::move(c));
+    if (index) select_work_offset(index);
   }
+}
+
+// The Fanuc family's additional work offsets: Fanuc G54.1 P1-P300 (P1-P48 standard, the rest an
+// option), Haas G154 P1-P99 and G110-G129 (= G154 P1-P20). They are work offsets 10 and up
+// (9 + P); without a P, G54.1 and G154 take P1.
+bool Interpreter::convert_additional_work_offset(int code, const BlockValues& v) {
+  if (!dialect_.g65_macro_calls) return false;
+  int p = 0;
+  if (code == 541 || code == 1540) {
+    p = v.has('p') ? int(std::lround(*v['p'])) : 1;
+    if (p < 1 || p > kAdditionalWorkOffsets) {
+      error(v.column['p' - 'a'], g_name(code) + " P" + number_text(*v['p']) +
+                                     ": the additional work offsets are P1 to P" +
+                                     std::to_string(kAdditionalWorkOffsets));
+      return true;
+    }
+  } else if (code >= 1100 && code <= 1290 && code % 10 == 0) {
+    p = (code - 1090) / 10;
+  } else {
+    return false;
+  }
+  select_work_offset(9 + p);
+  return true;
+}
+
+void Interpreter::select_work_offset(int index) {
+  const Pose old = g5x_[std::size_t(g5x_index_)], neu = g5x_[std::size_t(index)];
+  pos_.x += old.x - neu.x, pos_.y += old.y - neu.y, pos_.z += old.z - neu.z;
+  pos_.a += old.a - neu.a, pos_.b += old.b - neu.b, pos_.c += old.c - neu.c;
+  g5x_index_ = index;
+  params_.at(param::kCoordSystem) = index;
+  CanonCommand c = make(CanonKind::WorkOffset);
+  c.value = index;
+  c.end = neu;
+  emit(std::move(c));
 }
 
 // 16. Path control.

@@ -71,7 +71,9 @@ void Interpreter::comp_on(const BlockValues& v, int code) {
   } else {
     if (!comp_hints_) comp_hints_ = scan_comp_mode_hints(source_, dialect_);
     const int d_number = d ? int(std::lround(*d)) : 0;
-    if (auto hint = comp_hints_->at(std::size_t(current_line_), d_number, state_.tool))
+    if (auto hint = std::size_t(current_line_) < source_.lines.size()
+                        ? comp_hints_->at(std::size_t(current_line_), d_number, state_.tool)
+                        : std::nullopt)
       mode = hint->mode;
     else if (options_.default_cutter_compensation)
       mode = *options_.default_cutter_compensation;

@@ -21,6 +21,7 @@ int BlockValues::g_column(int code) const {
 Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& options,
                          const CanonSink& sink)
     : source_(source), options_(options), sink_(sink), tools_(options.tools) {
+  line_count_ = source.lines.size();
   DialectChoice choice = options.dialect
                              ? DialectChoice{*options.dialect, DialectOrigin::Given, "given"}
                              : choose_dialect(source);
@@ -39,11 +40,13 @@ Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& opt
   params_.set_system_lookup(
       [this](std::string_view name, double& value) { return system_parameter(name, value); });
   for (const auto& [index, origin] : options.work_offsets) {
-    if (index < 1 || index > 9) continue;
+    if (index < 1 || index > 9 + kAdditionalWorkOffsets) continue;
     g5x_[std::size_t(index)] = origin;
     const double values[6] = {origin.x, origin.y, origin.z, origin.a, origin.b, origin.c};
-    for (int i = 0; i < 6; ++i)
-      params_.at(param::kG54 + 20 * (index - 1) + i) = values[i];
+    // Parameters hold G54..G59.3 only (LinuxCNC's 5602; Fanuc's #7001.. for G54.1 are beyond).
+    const int first = index <= 9 ? param::kG54 + 20 * (index - 1) : 0;
+    for (int i = 0; first && i < 6; ++i)
+      params_.at(first + i) = values[i];
   }
   state_.inch = options.start_inch;
 }
@@ -68,7 +71,10 @@ bool Interpreter::system_parameter(std::string_view name, double& value) const {
   if (name == "_plane")
     return value = state_.plane == Plane::XY ? 170 : state_.plane == Plane::XZ ? 180 : 190, true;
   if (name == "_coord_system")
-    return value = g5x_index_ <= 6 ? 530 + 10 * g5x_index_ : 590 + (g5x_index_ - 6), true;
+    return value = g5x_index_ <= 6   ? 530 + 10 * g5x_index_
+                   : g5x_index_ <= 9 ? 590 + (g5x_index_ - 6)
+                                     : 541,
+           true;
   if (name == "_line") return value = current_line_ + 1, true;
   if (name == "_task") return value = 0, true; // not running under a GUI preview
   if (name == "_value_returned") return value = 0, true;
@@ -95,11 +101,14 @@ void Interpreter::report(Severity severity, int column, std::string message) {
   if (result_.diagnostics.size() == kMaxDiagnostics) {
     result_.diagnostics.push_back({Severity::Warning, source_.path, current_line_ + 1, 0,
                                    "too many diagnostics: the rest are not shown"});
+    if (auto [file, local] = locate(std::size_t(current_line_)); file != &source_)
+      result_.diagnostics.back().file = file->path,
+      result_.diagnostics.back().line = int(local) + 1;
   }
   if (result_.diagnostics.size() > kMaxDiagnostics && severity == Severity::Error)
     error_past_cap_ = true;
-  result_.diagnostics.push_back(
-      {severity, source_.path, current_line_ + 1, column, std::move(message)});
+  const auto [file, local] = locate(std::size_t(current_line_));
+  result_.diagnostics.push_back({severity, file->path, int(local) + 1, column, std::move(message)});
 }
 void Interpreter::error(int column, std::string message) {
   report(Severity::Error, column, std::move(message));
@@ -114,7 +123,8 @@ void Interpreter::note(int column, std::string message) {
 CanonCommand Interpreter::make(CanonKind kind) const {
   CanonCommand c;
   c.kind = kind;
-  c.line = current_line_;
+  // A program of the control's memory has no lines in the file: its commands are the call's.
+  c.line = std::size_t(current_line_) < source_.lines.size() ? current_line_ : current_call_line_;
   c.call_line = current_call_line_;
   c.state = state_;
   c.plane = state_.plane;
@@ -175,11 +185,43 @@ Pose Interpreter::offset_total() const {
 // Labels and the main loop
 // ------------------------------------------------------------------------------------------
 
-void Interpreter::scan_labels() {
+std::string_view Interpreter::line_text(std::size_t line) const {
+  const auto [file, local] = locate(line);
+  return file->line_text(local);
+}
+
+std::pair<const SourceFile*, std::size_t> Interpreter::locate(std::size_t line) const {
+  if (line < source_.lines.size() || control_starts_.empty()) return {&source_, line};
+  const auto next = std::upper_bound(control_starts_.begin(), control_starts_.end(), line);
+  const std::size_t k = std::size_t(next - control_starts_.begin()) - 1;
+  return {&control_sources_[k], line - control_starts_[k]};
+}
+
+bool Interpreter::load_control_program(const std::string& name) {
+  if (!options_.control_programs || !control_names_tried_.insert(name).second) return false;
+  std::optional<SourceFile> program = options_.control_programs(name);
+  if (!program || program->lines.empty()) return false;
+  const std::size_t start = line_count_;
+  control_starts_.push_back(start);
+  control_sources_.push_back(std::move(*program));
+  line_count_ += control_sources_.back().lines.size();
+  scan_labels(start);
+  // A file of the control's memory may hold the program without its O-number line: it starts at
+  // the file's first line.
+  long number = 0;
+  const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), number);
+  if (ec == std::errc() && end == name.data() + name.size() && start > 0)
+    program_numbers_.emplace(number, start - 1);
+  n_numbers_.reset(); // GOTO and M97 targets: indexed again with the new lines
+  program_starts_.clear();
+  return true;
+}
+
+void Interpreter::scan_labels(std::size_t from) {
   // Only lines that begin (after blanks, '/', an N number) with 'o' can hold O-words.
   Block b;
-  for (std::size_t i = 0; i < source_.lines.size(); ++i) {
-    std::string_view l = source_.line_text(i);
+  for (std::size_t i = from; i < line_count_; ++i) {
+    std::string_view l = line_text(i);
     std::size_t k = 0;
     while (k < l.size() && (l[k] == ' ' || l[k] == '\t' || l[k] == '/'))
       ++k;
@@ -218,20 +260,20 @@ std::optional<std::size_t> Interpreter::find_prev(const std::string& label, std:
 InterpretResult Interpreter::run() {
   scan_labels();
   BlockValues values;
-  const std::size_t n = source_.lines.size();
-  while (!finished_ && pc_ < n) {
+  while (!finished_ && pc_ < line_count_) {
     current_line_ = int(pc_);
     current_call_line_ = frames_.empty() ? int(pc_) : frames_.front().call_line;
     next_pc_ = pc_ + 1;
-    lex_line(source_.line_text(pc_), dialect_, block_);
+    lex_line(line_text(pc_), dialect_, block_);
     for (Diagnostic& d : block_.warnings)
       report(d.severity, d.column, std::move(d.message));
     if (!block_.errors.empty()) {
       error_reported_ = true;
+      const auto [file, local] = locate(pc_);
       for (Diagnostic& d : block_.errors) {
         if (!options_.keep_diagnostics) break;
-        d.file = source_.path;
-        d.line = current_line_ + 1;
+        d.file = file->path;
+        d.line = int(local) + 1;
         result_.diagnostics.push_back(std::move(d));
       }
       note(0, "block skipped");
@@ -293,6 +335,7 @@ InterpretResult Interpreter::run() {
   if (!finished_ && error_reported_) {
     result_.completed = false;
   } else if (!finished_) {
+    const std::size_t n = source_.lines.size();
     current_line_ = n ? int(n - 1) : 0;
     warning(0, "the program has no M2 or M30: it ends at the end of the file");
     result_.completed = true;

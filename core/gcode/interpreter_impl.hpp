@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <deque>
 #include <map>
 #include <optional>
 #include <set>
@@ -74,7 +75,17 @@ public:
 
 private:
   // --- set up -------------------------------------------------------------------------------
-  void scan_labels();
+  void scan_labels(std::size_t from = 0);
+
+  // --- the text run: the file given, then the control's programs loaded when called --------
+  std::string_view line_text(std::size_t line) const;
+  std::size_t line_count() const { return line_count_; }
+  // The file a line of the joined text is in, and the line's 0-based number there.
+  std::pair<const SourceFile*, std::size_t> locate(std::size_t line) const;
+  // Loads the control's program `name` (O-number digits or an o<name>) through
+  // options_.control_programs and indexes its labels; false when there is none.
+  bool load_control_program(const std::string& name);
+  std::string not_in_folders() const;
   void emit_preamble();
 
   // --- control flow (control_flow.cpp) -----------------------------------------------------
@@ -130,6 +141,8 @@ private:
   void convert_cutter_compensation(const BlockValues& v);
   void convert_tool_length_offset(BlockValues& v);
   void convert_coordinate_system(const BlockValues& v);
+  bool convert_additional_work_offset(int code, const BlockValues& v); // G54.1 P, G154 P, G110
+  void select_work_offset(int index);
   void convert_path_control(const BlockValues& v);
   void convert_distance_modes(const BlockValues& v);
   bool convert_group0(const BlockValues& v);
@@ -222,6 +235,10 @@ private:
   bool system_parameter(std::string_view name, double& value) const;
 
   const SourceFile& source_;
+  std::deque<SourceFile> control_sources_;    // loaded programs (addresses stay put)
+  std::vector<std::size_t> control_starts_;   // first joined line of each
+  std::set<std::string> control_names_tried_; // loaded or looked for in vain
+  std::size_t line_count_ = 0;
   const InterpreterOptions& options_;
   const CanonSink& sink_;
   Dialect dialect_;
@@ -267,7 +284,8 @@ private:
   // return home), and those the move being made sets; a move starts where it is known only
   // once all three are.
   unsigned known_axes_ = 0, axes_being_set_ = 0;
-  std::array<Pose, 10> g5x_{}; // work offsets 1..9 (mm)
+  // Work offsets (mm): 1..9 G54..G59.3, 10.. the Fanuc family's G54.1 P1.. (9 + P).
+  std::array<Pose, 10 + kAdditionalWorkOffsets> g5x_{};
   int g5x_index_ = 1;
   bool units_given_ = false; // G20/G21 or its dialect's equivalent seen
   Pose g92_;                 // G92 offsets (mm)

@@ -75,9 +75,9 @@ std::optional<std::size_t> Interpreter::macro_loop_match(std::size_t line,
   const std::string number(m.target);
   Block scratch;
   std::optional<std::size_t> found;
-  for (std::size_t i = line; forward ? i + 1 < source_.lines.size() : i > 0;) {
+  for (std::size_t i = line; forward ? i + 1 < line_count_ : i > 0;) {
     i = forward ? i + 1 : i - 1;
-    lex_line(source_.line_text(i), dialect_, scratch);
+    lex_line(line_text(i), dialect_, scratch);
     const MacroFlow k = scratch.macro.kind;
     const bool opens = k == MacroFlow::While || k == MacroFlow::Do;
     if ((forward ? k == MacroFlow::End : opens) && scratch.macro.target == number) {

@@ -48,7 +48,11 @@ MachineProfile parse_profile(std::string_view text, const std::string& path) {
                                       "\" is not a dialect ncjoule knows (" + known + ")");
   read_source(root, "profile", profile.sources);
   profile.kinematics = read_kinematics(root.table("kinematics"), profile.sources);
-  if (auto setup = root.optional_table("setup")) profile.setup = read_setup(*setup, profile.sources);
+  if (auto setup = root.optional_table("setup"))
+    profile.setup = read_setup(*setup, profile.sources);
+  for (std::string& dir : profile.setup.macro_dirs) // relative to the profile's folder
+    if (std::filesystem::path(dir).is_relative())
+      dir = (std::filesystem::path(path).parent_path() / dir).lexically_normal().string();
   profile.power = read_power(root.table("power"), profile.sources);
   if (auto tool = root.optional_table("default_tool"))
     profile.default_tool = read_default_tool(*tool, profile.sources);

@@ -11,15 +11,32 @@ constexpr const char* kWorkOffsetNames[] = {"G54", "G55",   "G56",   "G57",  "G5
 } // namespace
 
 int work_offset_index(std::string_view name) {
-  std::string upper(name);
-  for (char& c : upper)
-    c = char(std::toupper(static_cast<unsigned char>(c)));
+  std::string upper;
+  for (char c : name)
+    if (c != ' ') upper += char(std::toupper(static_cast<unsigned char>(c)));
   for (int k = 0; k < 9; ++k)
     if (upper == kWorkOffsetNames[k]) return k + 1;
-  return 0;
+  // The additional offsets: "G54.1 P7" (Fanuc), "G154 P7" (Haas), "G110".."G129" (Haas P1-P20).
+  int p = 0;
+  for (std::string_view prefix : {"G54.1P", "G154P"}) {
+    if (upper.rfind(prefix, 0) != 0) continue;
+    const std::string digits = upper.substr(prefix.size());
+    if (digits.empty() || digits.size() > 3 ||
+        digits.find_first_not_of("0123456789") != std::string::npos)
+      return 0;
+    p = std::stoi(digits);
+  }
+  if (upper.size() == 4 && upper[0] == 'G' &&
+      upper.find_first_not_of("0123456789", 1) == std::string::npos) {
+    const int g = std::stoi(upper.substr(1));
+    if (g >= 110 && g <= 129) p = g - 109;
+  }
+  return p >= 1 && p <= kAdditionalWorkOffsets ? 9 + p : 0;
 }
 
 std::string work_offset_name(int index) {
+  if (index > 9 && index <= 9 + kAdditionalWorkOffsets)
+    return "G54.1 P" + std::to_string(index - 9);
   return index >= 1 && index <= 9 ? kWorkOffsetNames[index - 1] : "G54";
 }
 
@@ -49,9 +66,15 @@ std::map<int, Pose> read_work_offsets(const toml::table& table, const TableReade
   for (const auto& [name, value] : table) {
     const int index = work_offset_index(name.str());
     const std::string where = std::string(key) + "." + std::string(name.str());
-    if (index == 0) owner.fail(where, "names no work offset: G54 to G59, G59.1 to G59.3");
+    if (index == 0)
+      owner.fail(where, "names no work offset: G54 to G59, G59.1 to G59.3, \"G54.1 P1\" to "
+                        "\"G54.1 P300\" (Haas \"G154 P1\", G110 to G129)");
     const auto xyz = numbers(&value, 3);
     if (!xyz) owner.fail(where, "must be [X, Y, Z], the origin's machine coordinates in mm");
+    if (offsets.count(index))
+      owner.fail(where, "is " + work_offset_name(index) +
+                            ", given twice (G110 to G129 are "
+                            "G154 P1 to P20)");
     offsets[index] = Pose{(*xyz)[0], (*xyz)[1], (*xyz)[2], 0, 0, 0};
   }
   return offsets;
@@ -86,6 +109,22 @@ WorkSetup read_setup(TableReader t, std::vector<std::string>& sources) {
     const toml::table* table = node->as_table();
     if (!table) t.fail("work_offsets_mm", "must be a table: G54 = [X, Y, Z], ...");
     setup.work_offsets = read_work_offsets(*table, t, "work_offsets_mm");
+  }
+  if (const toml::node* node = t.raw("macro_dirs")) {
+    const toml::array* list = node->as_array();
+    if (!list) t.fail("macro_dirs", "must be a list of folders: [\"macros\", ...]");
+    for (const toml::node& item : *list) {
+      const std::optional<std::string> dir = item.value<std::string>();
+      if (!dir || dir->empty()) t.fail("macro_dirs", "must be a list of folder names (strings)");
+      setup.macro_dirs.push_back(*dir);
+    }
+  }
+  if (const toml::node* node = t.raw("xy_home_in_work_mm")) {
+    const auto xy = numbers(node, 2);
+    if (!xy)
+      t.fail("xy_home_in_work_mm",
+             "must be [X, Y]: where machine X/Y home is in the program's work coordinates (mm)");
+    setup.xy_home_in_work_mm = std::pair{(*xy)[0], (*xy)[1]};
   }
   if (const toml::node* node = t.raw("travel_mm")) {
     const toml::table* table = node->as_table();

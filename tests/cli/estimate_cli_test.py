@@ -109,5 +109,41 @@ lines = [l for l in r.stderr.splitlines() if "no feed rate" in l]
 check(r.returncode == 2 and len(lines) == 1 and "(59 more times: line 6, 7, 8, 9, 10, ...)" in lines[0],
       f"a repeated error is printed once with its count ({lines[:2]})")
 
+# The control's own programs: a G65/M98 call to a macro not in the file runs the one in a
+# --macro-dir folder (named O9810.NC, 9811 or O09812.min), else in the profile's macro_dirs
+# (relative to the profile); with neither, the call is skipped with a warning.
+with tempfile.TemporaryDirectory() as tmp:
+    macros = os.path.join(tmp, "macros")
+    os.mkdir(macros)
+    for name, number, x in [("O9810.NC", 9810, 10), ("9811", 9811, 20), ("O09812.min", 9812, 30)]:
+        with open(os.path.join(macros, name), "w") as f:
+            f.write(f"%\nO{number}\nG1 X{x}. F600.\nM99\n%\n")
+    prog = os.path.join(tmp, "main.nc")
+    with open(prog, "w") as f:
+        f.write("O0001\nG21 G90 G0 X0 Y0 Z5\nG65 P9810\nM98 P9811\nG65 P9812\nM30\n")
+
+    def feed_time(*extra):
+        r = run("estimate", prog, "--machine", ZHOU, "--no-removal", "--json", *extra)
+        doc = json.loads(r.stdout)
+        return r, sum(b["time_s"] for b in doc["blocks"] if b["line"] in (3, 4, 5))
+
+    r, t = feed_time("--macro-dir", macros)
+    # 30 mm of feed at 600 mm/min is 3 s; the profile's acceleration adds a little.
+    check(r.returncode == 0 and 3.0 <= t < 3.5 and "not in this file" not in r.stderr,
+          f"--macro-dir runs the three macros ({t:.3f} s, {r.stderr.strip()[:120]!r})")
+    r, t = feed_time()
+    check(r.returncode == 0 and t < 0.01 and r.stderr.count("not in this file") == 3,
+          f"without the folder the calls are skipped with a warning each ({t:.3f} s)")
+    profile = os.path.join(tmp, "machine.toml")
+    with open(ZHOU) as f:
+        text = f.read()
+    with open(profile, "w") as f:
+        f.write(text + '\n[setup]\nmacro_dirs = ["macros"]\n')
+    r = run("estimate", prog, "--machine", profile, "--no-removal", "--json")
+    t = sum(b["time_s"] for b in json.loads(r.stdout)["blocks"] if b["line"] in (3, 4, 5))
+    check(r.returncode == 0 and 3.0 <= t < 3.5, f"the profile's macro_dirs, relative to it ({t:.3f} s)")
+    r = run("estimate", prog, "--machine", ZHOU, "--macro-dir", os.path.join(tmp, "nope"))
+    check(r.returncode != 0 and "nope" in r.stderr, "a --macro-dir that does not exist is refused")
+
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

@@ -132,3 +132,27 @@ TEST_CASE("a program that sets neither G20 nor G21 runs in the power-on units, w
   const Estimate given = estimate_program(make_source("p.nc", "G20\n" + text), machine, {});
   CHECK_FALSE(warned(given, "sets neither"));
 }
+
+TEST_CASE("without work offsets, G53 X/Y goes to the machine X/Y home the profile names") {
+  // Haas/Fusion end: Z home, then the table forward (G53 X.. Y0.). Without offsets the
+  // interpreter reads the machine position as a work one; xy_home_in_work_mm says where machine
+  // X0 Y0 is seen from the work.
+  const std::string program = haas_program("G53 G0 Z0.");
+  const std::string ending =
+      program.substr(0, program.rfind("M5")) + "G53 G0 X0. Y-50.\nM5\nM30\n%\n";
+  MachineProfile machine = generic();
+  const Estimate plain = estimate_program(make_source("a.nc", ending), machine, {});
+  machine.setup.xy_home_in_work_mm = std::pair{-300.0, 200.0};
+  const Estimate named = estimate_program(make_source("a.nc", ending), machine, {});
+  const auto last = [](const Estimate& e) { return e.path.back(); };
+  REQUIRE_FALSE(plain.path.empty());
+  REQUIRE_FALSE(named.path.empty());
+  CHECK(last(plain).x == doctest::Approx(0));
+  CHECK(last(plain).y == doctest::Approx(-50));
+  CHECK(last(named).x == doctest::Approx(-300));
+  CHECK(last(named).y == doctest::Approx(150));
+  // Z stays at Z home for both, and the longer traverse takes longer.
+  CHECK(last(named).z == doctest::Approx(last(plain).z));
+  CHECK(named.time_s > plain.time_s);
+  CHECK(named.energy.removed_mm3 == plain.energy.removed_mm3);
+}

@@ -307,3 +307,37 @@ TEST_CASE("every FreeCAD post's sample is detected as its controller family") {
     CHECK_MESSAGE(p.result.completed, std::string(post));
   }
 }
+
+TEST_CASE("the Fanuc family's additional work offsets: G54.1 P, Haas G154 P and G110-G129") {
+  // Fanuc G54.1 P1-P300 and Haas G154 P1-P99 (G110-G129 = P1-P20) select offsets past G59; a
+  // G53 move shows where each puts the work (machine X-100 is work X-100 - origin).
+  InterpreterOptions options;
+  options.work_offsets[1] = Pose{-300, 0, 0, 0, 0, 0};
+  options.work_offsets[9 + 2] = Pose{-200, 0, 0, 0, 0, 0}; // G54.1 P2
+  options.work_offsets[9 + 3] = Pose{-50, 0, 0, 0, 0, 0};  // G54.1 P3 = G154 P3 = G112
+  for (const char* dialect : {"fanuc", "haas"}) {
+    CAPTURE(dialect);
+    options.dialect = find_dialect(dialect);
+    for (const char* select : {"G54.1 P2", "G154 P2", "G111"}) {
+      CAPTURE(select);
+      const Toolpath p =
+          interpret(make_source("o.nc", std::string("O1\nG21 G90 G0 X0 Y0 Z0\n") + select +
+                                            "\nG0 X0\nG53 G0 X-100\nG112 G0 X0\nM30\n"),
+                    options);
+      CHECK(errors(p) == 0);
+      CHECK(with_severity(p, Severity::Warning).empty());
+      std::vector<double> xs;
+      for (const CanonCommand& c : p.commands)
+        if (c.kind == CanonKind::Traverse) xs.push_back(c.end.x);
+      // X0 in G54 (machine -300), X0 in P2 (machine -200), machine -100, X0 in P3 (machine -50).
+      CHECK(xs == std::vector<double>{0, 0, 100, 0});
+    }
+  }
+  // LinuxCNC has no G54.1: it stays an unknown code there.
+  options.dialect = find_dialect("linuxcnc");
+  const Toolpath l = interpret(make_source("o.ngc", "G21\nG54.1 P2\nG0 X1\nM2\n"), options);
+  CHECK(!with_severity(l, Severity::Warning).empty());
+  // P out of range is the control's alarm.
+  options.dialect = find_dialect("fanuc");
+  CHECK(errors(interpret(make_source("o.nc", "O1\nG21\nG54.1 P400\nM30\n"), options)) == 1);
+}

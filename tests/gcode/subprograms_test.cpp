@@ -204,3 +204,45 @@ TEST_CASE("Fanuc macro B control flow: WHILE DO END, IF GOTO, IF THEN, GOTO") {
   // An endless DO loop stops at the loop guard, with an error, not a hang.
   CHECK(errors(run("O1\nG21\nDO1\nG0 X1\nEND1\nM30\n", "fanuc")) == 1);
 }
+
+TEST_CASE("programs the control holds run when the caller gives them") {
+  // O9810 and o<probe> are in the control's memory, not in the file: given by the caller (a
+  // folder, --macro-dir), they run as if in the file, and their commands count at the call line.
+  std::vector<std::string> asked;
+  InterpreterOptions options;
+  options.dialect = find_dialect("fanuc");
+  options.control_programs = [&](const std::string& name) -> std::optional<SourceFile> {
+    asked.push_back(name);
+    if (name == "9810") return make_source("O9810.NC", "O9810\nG1 X#24 Y#25 F#9\nBAD\nM99\n");
+    return std::nullopt;
+  };
+  const SourceFile main = make_source(
+      "main.nc", "O0001\nG21 G90 G0 X0 Y0 Z5\nG65 P9810 X10. Y5. F500.\nG65 P9810 X20. Y5. "
+                 "F500.\nM98 P9999\nG0 Z20\nM30\n");
+  const Toolpath p = interpret(main, options);
+  const std::vector<std::string> expected = {T(0, 0, 5), F(10, 5, 5), F(20, 5, 5), T(20, 5, 20)};
+  CHECK(moves(p) == expected);
+  // Asked once for each program: O9999 is found nowhere and its call is skipped with a warning.
+  CHECK(asked == std::vector<std::string>{"9810", "9999"});
+  int feed_lines = 0;
+  for (const CanonCommand& c : p.commands)
+    if (c.kind == CanonKind::Feed) CHECK(c.line == (feed_lines++ == 0 ? 2 : 3));
+  CHECK(feed_lines == 2);
+  // What is wrong in the macro is said at its own file and line.
+  bool found = false;
+  for (const Diagnostic& d : p.result.diagnostics)
+    if (d.file == "O9810.NC" && d.line == 3) found = true;
+  CHECK(found);
+  // A LinuxCNC subroutine file: o<probe> call reads probe.ngc.
+  InterpreterOptions lcnc;
+  lcnc.dialect = find_dialect("linuxcnc");
+  lcnc.control_programs = [](const std::string& name) -> std::optional<SourceFile> {
+    if (name != "probe") return std::nullopt;
+    return make_source("probe.ngc", "o<probe> sub\nG1 Z#1 F100\no<probe> endsub\nM2\n");
+  };
+  const Toolpath l =
+      interpret(make_source("m.ngc", "G21 G0 X0 Y0 Z5\no<probe> call [-2]\nG0 Z5\nM2\n"), lcnc);
+  CHECK(errors(l) == 0);
+  const std::vector<std::string> l_expected = {T(0, 0, 5), F(0, 0, -2), T(0, 0, 5)};
+  CHECK(moves(l) == l_expected);
+}

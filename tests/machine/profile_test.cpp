@@ -280,17 +280,34 @@ source = "the shop's setup sheet"
 z_home_above_work_in = 6
 power_on_units = "inch"
 cutter_compensation = "wear"
-work_offsets_mm = { G54 = [-381.0, -203.2, -355.6], "G59.1" = [-100, -50, -300] }
+work_offsets_mm = { G54 = [-381.0, -203.2, -355.6], "G59.1" = [-100, -50, -300], "G54.1 P2" = [-1, -2, -3], G112 = [-7, -8, -9] }
 travel_mm = { x = [-762, 0], y = [-406, 0], z = [-508, 0] }
+macro_dirs = ["macros", "/opt/shop/o9000"]
+xy_home_in_work_mm = [-381.0, 203.2]
 )",
-                                         "s.toml");
+                                         "dir/s.toml");
   CHECK(m.setup.z_home_above_work_mm == doctest::Approx(152.4));
   CHECK(m.setup.power_on_inch == true);
   CHECK(m.setup.cutter_compensation == CutterCompMode::Wear);
   CHECK_FALSE(plain.setup.cutter_compensation);
-  REQUIRE(m.setup.work_offsets.size() == 2);
+  REQUIRE(m.setup.work_offsets.size() == 4);
+  check_names_file_and_key(
+      refusal(generic +
+              "[setup]\nwork_offsets_mm = { G112 = [0, 0, 0], \"G154 P3\" = [0, 0, 0] }\n"),
+      "setup.work_offsets_mm.G154 P3");
   CHECK(m.setup.work_offsets.at(1).z == doctest::Approx(-355.6));
   CHECK(m.setup.work_offsets.at(7).x == -100);
+  // The additional offsets are 9 + P: G54.1 P2, Haas G112 (= G154 P3).
+  CHECK(m.setup.work_offsets.at(11).z == -3);
+  CHECK(m.setup.work_offsets.at(12).x == -7);
+  CHECK(work_offset_name(11) == "G54.1 P2");
+  CHECK(work_offset_index("g54.1 p300") == 309);
+  CHECK(work_offset_index("G54.1 P301") == 0);
+  CHECK(work_offset_index("G130") == 0);
+  // Macro folders: a relative one is the profile's folder's.
+  CHECK(m.setup.macro_dirs == std::vector<std::string>{"dir/macros", "/opt/shop/o9000"});
+  REQUIRE(m.setup.xy_home_in_work_mm);
+  CHECK(m.setup.xy_home_in_work_mm->second == doctest::Approx(203.2));
   REQUIRE(m.setup.travel);
   CHECK((*m.setup.travel)[1].first == -406);
 

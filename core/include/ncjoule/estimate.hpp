@@ -43,6 +43,8 @@ struct EstimateOptions {
   // Work offsets (machine coordinates of each origin, mm; 1..9 = G54..G59.3) from a job file,
   // in place of the profile's [setup] work_offsets_mm for the same offset.
   std::map<int, Pose> work_offsets;
+  // Folders of the control's programs (--macro-dir), searched before the profile's macro_dirs.
+  std::vector<std::string> macro_dirs;
   // How this program's G41/G42 were posted, whatever the program and the profile say (a job
   // file's cutter_compensation); empty: the program's words, else the profile's [setup].
   std::optional<CutterCompMode> cutter_compensation;

@@ -49,8 +49,19 @@ struct SourceFile {
   }
 };
 
+// The Fanuc family's additional work offsets (G54.1 P1..P300; Haas G154 P1..P99): work offset
+// index 9 + P, after G54..G59.3 (1..9).
+inline constexpr int kAdditionalWorkOffsets = 300;
+
 // Splits text into lines; never fails.
 SourceFile make_source(std::string path, std::string text);
+
+// Reads the control's programs from folders, first folder first: for an O-number the file
+// named O9810, O9810.NC, 9810.nc (any case, any extension), for a LinuxCNC o<name> the file
+// name.ngc. Unreadable files are skipped with a warning in `diagnostics` (taken by reference:
+// it must outlive the returned function).
+std::function<std::optional<SourceFile>(const std::string& name)>
+control_programs_in(std::vector<std::string> folders, std::vector<Diagnostic>& diagnostics);
 
 // The comments of one source line as a dialect reads them ("( )" and ";" as Dialect says), each
 // trimmed, with the 1-based column of its opening character, and whether the line holds
@@ -315,6 +326,12 @@ struct InterpreterOptions : InterpreterLimits {
   // `default_cutter_compensation` (a machine's setting), else Control.
   std::optional<CutterCompMode> cutter_compensation;
   std::optional<CutterCompMode> default_cutter_compensation;
+  // Programs the control holds outside this file (Fanuc/Haas O9xxx and probing macros, a
+  // LinuxCNC subroutine file): asked for by name when a call finds no target in the file, as
+  // the digits of the O-number ("9810") or the o<name> ("probe"); they return the program's
+  // source, or nothing. Those found run like programs of the file; the caller does the reading
+  // (control_programs_in reads folders).
+  std::function<std::optional<SourceFile>(const std::string& name)> control_programs;
 };
 
 struct InterpretResult {

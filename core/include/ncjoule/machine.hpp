@@ -139,11 +139,19 @@ struct WorkSetup {
   // How this shop's posts write G41/G42 when a program does not say (cutter_compensation =
   // "control" or "wear"): in control, the path is the part contour; in wear, the tool centre.
   std::optional<CutterCompMode> cutter_compensation;
+  // Folders holding the programs the control has in its memory (O9xxx macros, probing cycles,
+  // LinuxCNC subroutine files), searched when a program calls one it does not hold; relative
+  // ones are taken from the profile's folder.
+  std::vector<std::string> macro_dirs;
+  // Without work offsets: where machine X/Y home (machine X0 Y0) lies in the program's work
+  // coordinates, so that a G53 X/Y move or a G28 X/Y return goes there; not given: at work X0 Y0.
+  std::optional<std::pair<double, double>> xy_home_in_work_mm;
 };
 
-// "G54" .. "G59", "G59.1" .. "G59.3" (any case) -> 1 .. 9; 0 when the name is none of them.
+// "G54" .. "G59", "G59.1" .. "G59.3" (any case) -> 1 .. 9; "G54.1 P1" .. "G54.1 P300" (Haas
+// "G154 P1", G110 .. G129 = G154 P1 .. P20) -> 10 .. 309; 0 when the name is none of them.
 int work_offset_index(std::string_view name);
-// 1 .. 9 -> "G54" .. "G59.3"; "G54" for anything else.
+// 1 .. 9 -> "G54" .. "G59.3", 10 .. 309 -> "G54.1 P1" ..; "G54" for anything else.
 std::string work_offset_name(int index);
 
 struct MachineProfile {

@@ -111,6 +111,7 @@ bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
   }
   try {
     machine = load_profile(path);
+    machine.by_default = s.machine.empty() && config->machine.empty();
     return true;
   } catch (const ProfileError& e) {
     print_diagnostics({e.diagnostic()});

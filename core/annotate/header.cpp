@@ -52,6 +52,14 @@ Group totals(const Estimate& estimate) {
   const double cutting_s = estimate.time.cutting_s();
   const double mrr = cutting_s > 0 ? e.removed_mm3 / cutting_s : 0;
   g.fields.push_back(field("MRR_MM3_S", format_significant(mrr, 4, 3)));
+  // What the numbers rest on that nobody gave: the stock, tools, the machine.
+  std::string guessed;
+  if (estimate.removal && (estimate.removal->stock_source == StockSource::Guessed ||
+                           estimate.removal->stock_source == StockSource::None))
+    guessed += "STOCK";
+  if (estimate.tools_guessed) guessed += guessed.empty() ? "TOOLS" : "-TOOLS";
+  if (estimate.machine_guessed) guessed += guessed.empty() ? "MACHINE" : "-MACHINE";
+  if (!guessed.empty()) g.fields.push_back(field("GUESSED", guessed));
   if (estimate.inch) {
     g.fields.push_back(field("VOL_IN3", format_significant(e.removed_mm3 / kMm3PerIn3, 4, 4)));
     g.fields.push_back(field("MRR_IN3_MIN", format_significant(mrr * 60 / kMm3PerIn3, 4, 4)));

@@ -55,6 +55,25 @@ void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
     seg->start.cutting_factor = seg->end.cutting_factor = factor;
 }
 
+// Material removed with the spindle stopped (no M3/M4 yet, an M5 before, or S0): on the machine
+// the tool would break, unless the spindle is one switched by hand (a router's). Counted as
+// turning at the speed the program last set (S without M3), else the profile's
+// hand_spindle_rpm; with neither its spindle and cutting energy cannot be counted. Said once.
+void EnergyIntegrator::spin_for_stopped_cut(const CanonCommand& command, OperatingSegment* first,
+                                            OperatingSegment* last) {
+  const ModalState& s = command.state;
+  if (s.spindle != SpindleDir::Off && s.spindle_rpm > 0) return;
+  if (stopped_cuts_++ == 0) {
+    stopped_cut_line_ = command.line;
+    stopped_cut_rpm_ = s.spindle_rpm > 0 ? s.spindle_rpm : constants_.hand_spindle_rpm;
+  }
+  const double rpm = s.spindle_rpm > 0 ? s.spindle_rpm : constants_.hand_spindle_rpm;
+  if (!(rpm > 0)) return;
+  for (OperatingSegment* seg = first; seg != last; ++seg)
+    for (OperatingPoint* p : {&seg->start, &seg->end})
+      if (p->mrr_mm3_s > 0) p->spindle_rpm = rpm, p->spindle_on = 1;
+}
+
 void EnergyIntegrator::note_cutting(const OperatingPoint& p) {
   if (!(p.mrr_mm3_s > 0) || !(p.spindle_on > 0)) return;
   if (!cut_seen_) {
@@ -123,6 +142,8 @@ CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& comma
                                     std::vector<Diagnostic>* diagnostics) {
   const std::size_t first = segments.size();
   append_operating_segments(index, command, timed, removal, previous_rpm_, segments, diagnostics);
+  if (removal && removal->removed_mm3 > 0)
+    spin_for_stopped_cut(command, segments.data() + first, segments.data() + segments.size());
   correct_for_chip_thickness(command, segments.data() + first, segments.data() + segments.size());
   return integrate(index, command, timed, segments.data() + first,
                    segments.data() + segments.size(), removal ? removal->removed_mm3 : 0.0);
@@ -139,6 +160,27 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   result.co2_kg = kwh * options_.co2_kg_per_kwh.value_or(constants_.co2_kg_per_kwh);
   result.cost = kwh * options_.price_per_kwh.value_or(constants_.price_per_kwh);
   result.currency = options_.currency.value_or(constants_.currency);
+  if (stopped_cuts_ > 0) {
+    char text[480];
+    const int more = int(stopped_cuts_ - 1);
+    if (stopped_cut_rpm_ > 0)
+      std::snprintf(
+          text, sizeof text,
+          "material is removed with the spindle stopped (no M3/M4, or S0) here%s: on "
+          "the machine the tool would break unless the spindle is switched by hand; "
+          "counted as turning at %g rpm (%s)",
+          more ? (" and in " + std::to_string(more) + " more moves").c_str() : "", stopped_cut_rpm_,
+          constants_.hand_spindle_rpm == stopped_cut_rpm_ ? "the profile's hand_spindle_rpm"
+                                                          : "the program's last S");
+    else
+      std::snprintf(text, sizeof text,
+                    "material is removed with the spindle stopped (no M3/M4 and no S) here%s: "
+                    "on the machine the tool would break unless the spindle is switched by "
+                    "hand; its spindle and cutting energy are NOT counted (give the speed a hand "
+                    "spindle runs at with hand_spindle_rpm under [power] in the profile)",
+                    more ? (" and in " + std::to_string(more) + " more moves").c_str() : "");
+    result.diagnostics.push_back({Severity::Warning, "", stopped_cut_line_ + 1, 0, text});
+  }
   // A fitted cutting term used outside what it was fitted on: once per program, saying how far.
   const ZhouConstants& z = constants_.zhou;
   const bool fitted =

@@ -242,6 +242,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                               const std::map<int, double>& comp_radii, bool radii_final) {
   Estimate e;
   e.file = source.path;
+  e.machine_guessed = machine.by_default;
   if (options.progress) options.progress(0);
   InterpreterOptions interpreter;
   static_cast<InterpreterLimits&>(interpreter) = options.limits;
@@ -342,6 +343,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
         source.path);
     e.tools = std::move(assignment.tools);
     e.unsimulated_tools = std::move(assignment.unsimulated);
+    e.tools_guessed = assignment.fallback || !e.unsimulated_tools.empty();
     add_diagnostics(e, std::move(assignment.diagnostics), source.path);
     std::map<int, Tool> used;
     for (const auto& [number, _] : scan.tools.first_move)

@@ -133,6 +133,8 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   if (const auto rated = t.optional_quantity("spindle_rated", Dimension::Power, Range::Positive))
     p.spindle_rated_w = *rated;
   p.spindle_power_curve = read_power_curve(t, "spindle_power_curve_rpm_w");
+  if (const auto rpm = t.optional_number("hand_spindle_rpm", Range::Positive))
+    p.hand_spindle_rpm = *rpm;
   if (auto zhou = needs_zhou ? std::optional(t.table("zhou")) : t.optional_table("zhou"))
     p.zhou = read_zhou(*zhou, sources);
   t.finish();

@@ -70,6 +70,7 @@ ToolAssignment assign_tools(const ToolUsage& usage, const std::map<int, Tool>& d
     }
     if (fallback) {
       out.tools[0] = *fallback;
+      out.fallback = cuts;
       if (cuts)
         say(severity, line,
             std::string(selected.empty() ? "the program selects no tool"

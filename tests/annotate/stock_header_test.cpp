@@ -75,3 +75,29 @@ TEST_CASE("two setups: a stock line and a setup line for each") {
   // Each setup removed its own pocket level (the second is not air cutting in the first's hole).
   CHECK(count(lines, "VOL_MM3=0 ") == 0);
 }
+
+TEST_CASE("the TOTAL line says what its numbers rest on that nobody gave") {
+  auto total_lines = [](const std::string& text) {
+    std::string out;
+    for (const std::string& line : lines_of(text))
+      if (line.find("NCJ TOTAL") != std::string::npos) out += line + "\n";
+    return out;
+  };
+  // A guessed stock: said; a given one: not.
+  const std::string guessed = total_lines(annotate_with_removal(pocket_program(""), {}));
+  CHECK(guessed.find("GUESSED=STOCK ") != std::string::npos);
+  EstimateOptions given;
+  given.stock = parse_stock_spec("box:-5,-5,-10,45,25,0");
+  CHECK(total_lines(annotate_with_removal(pocket_program(""), given)).find("GUESSED") ==
+        std::string::npos);
+  // A tool nothing describes (T2), and the generic machine standing in for an unnamed one.
+  const std::string undescribed = "G21 G90\nT2 M6\nS8000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F200\n"
+                                  "G1 X30 F600\nG0 Z5\nM30\n";
+  MachineProfile unnamed = machine();
+  unnamed.by_default = true;
+  const SourceFile source = make_source("part.ngc", undescribed);
+  const std::string both =
+      total_lines(annotate(source, estimate_program(source, unnamed, given), unnamed, {}));
+  CAPTURE(both);
+  CHECK(both.find("GUESSED=TOOLS-MACHINE ") != std::string::npos);
+}

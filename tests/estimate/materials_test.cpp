@@ -196,3 +196,44 @@ TEST_CASE("with flutes known, a material with Kienzle's constants corrects for c
   CHECK(cutting_sec(corrected) / cutting_sec(plain) ==
         doctest::Approx(std::pow(3.0, -0.25)).epsilon(1e-3));
 }
+
+TEST_CASE("material removed with the spindle stopped is said, and counted at a known speed") {
+  // A 6 mm slot 2 mm deep and 50 mm long in aluminium. k_c 0.531 J/mm^3 at the edge, efficiency
+  // 0.8: the cutting energy is 600 mm^3 x 0.531 / 0.8 J whatever the speed (c4 = 0).
+  const auto program = [](const std::string& spindle) {
+    return "G21 G90\n(T1 D=6. CR=0. - ZMIN=-2. - FLAT END MILL)\nT1 M6\n" + spindle +
+           "G0 X0 Y0 Z5\nG1 Z-2 F300\nG1 X50 F800\nG0 Z5\nM2\n";
+  };
+  EstimateOptions options;
+  options.stock = parse_stock_spec("box:-10,-10,-5,60,10,0");
+  auto cutting_j = [](const Estimate& e) {
+    return e.energy.components_j[static_cast<std::size_t>(PowerComponent::Cutting)];
+  };
+  auto spindle_j = [](const Estimate& e) {
+    return e.energy.components_j[static_cast<std::size_t>(PowerComponent::Spindle)];
+  };
+  MachineProfile machine = generic();
+  const Estimate running =
+      estimate_program(make_source("a.nc", program("S18000 M3\n")), machine, options);
+  REQUIRE(running.energy.removed_mm3 > 0);
+  CHECK_FALSE(warned(running, "spindle stopped"));
+  const double expected_cut = running.energy.removed_mm3 * 0.531 / 0.8;
+  CHECK(cutting_j(running) == doctest::Approx(expected_cut).epsilon(0.02));
+  // No M3 and no S: the cut is said, and its energy is not counted.
+  const Estimate bare = estimate_program(make_source("b.nc", program("")), machine, options);
+  CHECK(warned(bare, "spindle stopped (no M3/M4 and no S) here and in 1 more moves"));
+  CHECK(warned(bare, "NOT counted"));
+  CHECK(cutting_j(bare) == 0);
+  // S without M3: counted at the program's speed.
+  const Estimate s_only =
+      estimate_program(make_source("c.nc", program("S18000\n")), machine, options);
+  CHECK(warned(s_only, "counted as turning at 18000 rpm (the program's last S)"));
+  CHECK(cutting_j(s_only) == doctest::Approx(cutting_j(running)).epsilon(1e-6));
+  // A hand spindle the profile describes: its speed, spindle power only while it cuts.
+  machine.power.hand_spindle_rpm = 18000;
+  const Estimate hand = estimate_program(make_source("d.nc", program("")), machine, options);
+  CHECK(warned(hand, "counted as turning at 18000 rpm (the profile's hand_spindle_rpm)"));
+  CHECK(cutting_j(hand) == doctest::Approx(cutting_j(running)).epsilon(1e-6));
+  CHECK(spindle_j(hand) > 0);
+  CHECK(spindle_j(hand) < spindle_j(running)); // not while it positions
+}

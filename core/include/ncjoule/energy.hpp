@@ -252,6 +252,8 @@ private:
   void correct_for_chip_thickness(const CanonCommand& command, OperatingSegment* first,
                                   OperatingSegment* last) const;
   void note_cutting(const OperatingPoint& point);
+  void spin_for_stopped_cut(const CanonCommand& command, OperatingSegment* first,
+                            OperatingSegment* last);
 
   const PowerConstants& constants_;
   EnergyOptions options_;
@@ -260,6 +262,11 @@ private:
   // Where the cutting term was used: speeds and removal rates while cutting.
   double cut_rpm_min_ = 0, cut_rpm_max_ = 0, cut_mrr_min_ = 0, cut_mrr_max_ = 0;
   bool cut_seen_ = false;
+  // Material removed with the spindle stopped: the first such line (-1: none), how many such
+  // commands, and the speed they were counted at (0: none known).
+  int stopped_cut_line_ = -1;
+  std::size_t stopped_cuts_ = 0;
+  double stopped_cut_rpm_ = 0;
 };
 
 // Integrates power over every step of every command (trapezoid rule, MRR per step = step

@@ -225,7 +225,11 @@ struct Estimate {
   std::size_t commands = 0; // canonical commands they made
   bool program_end = false; // ended at M2/M30 or a closing '%', not at the end of the file
   double time_s = 0;        // the program's time
-  bool inch = false;        // the program's units: its first G20/G21 (else those it starts in)
+  // What was guessed rather than given: tools that stood in for ones nothing describes (or
+  // tools left unsimulated), and the machine (the generic profile, nothing named one).
+  bool tools_guessed = false;
+  bool machine_guessed = false;
+  bool inch = false; // the program's units: its first G20/G21 (else those it starts in)
   TimeSplit time;
   std::map<int, Tool> tools;            // by the number moves carry; 0: moves with none selected
   std::vector<int> unsimulated_tools;   // tools moves use that nothing describes (no removal)

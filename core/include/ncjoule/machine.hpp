@@ -107,6 +107,11 @@ struct PowerConstants {
   // (rpm, W pairs, in increasing rpm); 0 / empty: not given.
   double spindle_rated_w = 0;
   std::vector<std::pair<double, double>> spindle_power_curve;
+  // The speed of a spindle the program does not command (a router's trim router or a VFD
+  // spindle switched by hand): moves that remove material with no M3/M4 or S in force are
+  // counted at it. 0: not known (their spindle and cutting energy are then not counted, and
+  // a warning says so).
+  double hand_spindle_rpm = 0;
   double co2_kg_per_kwh = 0;
   double price_per_kwh = 0;
   std::string currency = "EUR";
@@ -157,6 +162,7 @@ std::string work_offset_name(int index);
 struct MachineProfile {
   std::string name;
   std::string source_path; // file it came from
+  bool by_default = false; // nothing named it: the generic profile stood in (said in headers)
   std::string dialect;     // controller dialect name (see gcode.hpp), or "auto": detected
   // With dialect "auto": the machine's own control, used when nothing in a program names one.
   std::string fallback_dialect;

@@ -83,6 +83,7 @@ struct ToolUsage {
 struct ToolAssignment {
   std::map<int, Tool> tools;    // by number, 0 included when a fallback was found
   std::vector<int> unsimulated; // numbers moves use that no tool stands for
+  bool fallback = false;        // moves with no tool selected cut with a tool that stood in
   std::vector<Diagnostic> diagnostics;
 };
 ToolAssignment assign_tools(const ToolUsage& usage, const std::map<int, Tool>& described,

@@ -35,8 +35,9 @@ CLI::Validator finite_between(double low, double high) {
 
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
   cmd.add_option("-m,--machine", s.machine,
-                 "Machine profile (.toml); default: the user config's (machine = ...), else the "
-                 "generic 3-axis profile");
+                 "Machine profile: a .toml file, or a shipped one by name (haas-vf2, "
+                 "router-2.2kw-vfd, ...: `ncjoule profiles` lists them); default: the user "
+                 "config's (machine = ...), else the generic 3-axis profile");
   cmd.add_option("--dialect", s.dialect,
                  "Controller dialect (auto, linuxcnc, fanuc, haas, grbl, mach3, siemens, "
                  "heidenhain, reprap); default: the machine profile's (auto: detected from the "
@@ -97,7 +98,7 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
 bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
   const auto& config = user_config();
   if (!config) return false;
-  std::string path = s.machine.empty() ? config->machine : s.machine;
+  std::string path = resolve_machine(s.machine.empty() ? config->machine : s.machine);
   if (path.empty()) {
     path = default_machine_profile();
     if (path.empty()) {
@@ -116,6 +117,12 @@ bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
   } catch (const ProfileError& e) {
     print_diagnostics({e.diagnostic()});
     std::cerr << "ncjoule: the machine profile " << path << " cannot be used (see above)\n";
+    if (path.find('/') == std::string::npos && path.find(".toml") == std::string::npos) {
+      std::cerr << "ncjoule: shipped profiles (ncjoule profiles):";
+      for (const auto& [stem, _] : shipped_profiles())
+        std::cerr << ' ' << stem;
+      std::cerr << '\n';
+    }
     return false;
   }
 }

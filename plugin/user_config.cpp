@@ -1,5 +1,6 @@
 #include "user_config.hpp"
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -157,6 +158,39 @@ std::vector<std::string> machine_profile_dirs() {
   dirs.push_back(NCJOULE_SOURCE_MACHINES_DIR); // running from the build folder
 #endif
   return dirs;
+}
+
+std::map<std::string, std::string> shipped_profiles() {
+  std::map<std::string, std::string> found;
+  for (const std::string& dir : machine_profile_dirs()) {
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it->path().extension() == ".toml" && it->is_regular_file(ec))
+        found.emplace(it->path().stem().string(), it->path().string());
+  }
+  return found;
+}
+
+std::string resolve_machine(const std::string& name) {
+  std::error_code ec;
+  if (name.empty() || fs::exists(name, ec) || name.find('/') != std::string::npos ||
+      name.find('\\') != std::string::npos)
+    return name;
+  std::string wanted;
+  for (char c : name)
+    wanted += char(std::tolower(static_cast<unsigned char>(c)));
+  if (wanted.size() > 5 && wanted.compare(wanted.size() - 5, 5, ".toml") == 0)
+    wanted.resize(wanted.size() - 5);
+  const auto shipped = shipped_profiles();
+  std::vector<std::string> starting;
+  for (const auto& [stem, path] : shipped) {
+    std::string low;
+    for (char c : stem)
+      low += char(std::tolower(static_cast<unsigned char>(c)));
+    if (low == wanted) return path;
+    if (low.rfind(wanted, 0) == 0) starting.push_back(path);
+  }
+  return starting.size() == 1 ? starting.front() : name;
 }
 
 std::string default_machine_profile() {

@@ -14,6 +14,7 @@
 // over the machine profile.
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,5 +53,13 @@ std::string default_machine_profile();
 
 // Folders where installed machine profiles are looked for, in order.
 std::vector<std::string> machine_profile_dirs();
+
+// The shipped profiles (file stem -> path), from the first folder that holds each name.
+std::map<std::string, std::string> shipped_profiles();
+
+// What --machine names: a file that exists, else a shipped profile by its file's stem
+// ("haas-vf2", any case) or the one stem it begins ("haas-vf0" -> haas-vf0-pavanaskar2014).
+// The path as given when nothing matches (the reader then says it cannot be opened).
+std::string resolve_machine(const std::string& name);
 
 } // namespace ncjoule::cli

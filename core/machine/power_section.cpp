@@ -104,9 +104,9 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   p.co2_kg_per_kwh = t.number("co2_kg_per_kwh", Range::NonNegative);
   p.price_per_kwh = t.number("price_per_kwh", Range::NonNegative);
   p.currency = t.string("currency");
-  // Each model needs its own table; the combined model needs both.
+  // Each model needs its own table; the combined model needs both, or only Pavanaskar's when its
+  // cutting term is the material's (Zhou's table gives nothing else to it).
   const bool needs_pavanaskar = p.model != PowerModel::Zhou;
-  const bool needs_zhou = p.model != PowerModel::Pavanaskar;
   if (auto pav =
           needs_pavanaskar ? std::optional(t.table("pavanaskar")) : t.optional_table("pavanaskar"))
     p.pavanaskar = read_pavanaskar(*pav, sources);
@@ -118,6 +118,8 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   p.cutting_term = cutting == "material" ? CuttingTerm::Material : CuttingTerm::Fitted;
   if (p.cutting_term == CuttingTerm::Material && p.model == PowerModel::Pavanaskar)
     t.fail("cutting_term", "the pavanaskar model has its own cutting constants per axis");
+  const bool needs_zhou = p.model == PowerModel::Zhou || (p.model == PowerModel::Combined &&
+                                                          p.cutting_term == CuttingTerm::Fitted);
   p.cutting_efficiency =
       t.optional_number("cutting_efficiency", Range::Positive).value_or(p.cutting_efficiency);
   if (p.cutting_efficiency > 1) t.fail("cutting_efficiency", "must be at most 1");

@@ -34,6 +34,7 @@ MachineProfile parse_profile(std::string_view text, const std::string& path) {
   MachineProfile profile;
   profile.source_path = path;
   profile.name = root.string("name");
+  profile.summary = root.optional_string("summary").value_or("");
   if (profile.name.empty()) root.fail("name", "must not be empty");
   std::string known;
   for (const std::string& name : dialect_names())

@@ -145,5 +145,29 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run("estimate", prog, "--machine", ZHOU, "--macro-dir", os.path.join(tmp, "nope"))
     check(r.returncode != 0 and "nope" in r.stderr, "a --macro-dir that does not exist is refused")
 
+# Shipped machine classes: `ncjoule profiles` lists every one (each loads), --machine finds them
+# by name, and a router job at 24,000 rpm idles at the router spindle's power, not a VMC's.
+r = subprocess.run([NCJOULE, "profiles"], capture_output=True, text=True)
+listed = [l.split()[0] for l in r.stdout.splitlines() if l.strip()]
+shipped = sorted(f[:-5] for f in os.listdir(os.path.join(ROOT, "samples/machines")) if f.endswith(".toml"))
+check(r.returncode == 0 and listed == shipped and "cannot be read" not in r.stdout,
+      f"ncjoule profiles lists the shipped profiles ({listed})")
+router_job = ("G21 G90\n(T1 D=6. CR=0. - ZMIN=-1. - FLAT END MILL)\nT1 M6\nS24000 M3\nG4 P10\n"
+              "G0 X0 Y0 Z5\nM5\nM30\n")
+def spindle_w(machine):
+    r = run("estimate", "-", "-m", machine, "--no-removal", "--json", stdin=router_job)
+    doc = json.loads(r.stdout)
+    dwell = [b for b in doc["blocks"] if b["line"] == 5][0]
+    return r, dwell["components"]["spindle"] / dwell["time_s"]
+r, w = spindle_w("router-2.2kw")
+# The profile's line: 0.007 W/rpm x 24,000 rpm = 168 W (its estimate of a 2.2 kW spindle's
+# no-load input); the generic VMC's extrapolated line gives over 5 kW.
+check(r.returncode == 0 and abs(w - 168) < 1, f"router-2.2kw (prefix) idles at 168 W at 24,000 rpm ({w:.0f} W)")
+r, w_generic = spindle_w("generic-3axis")
+check(w_generic > 5000, f"the generic VMC's line at 24,000 rpm is a VMC's ({w_generic:.0f} W)")
+r = run("estimate", "-", "-m", "haas-vf9", stdin=router_job)
+check(r.returncode != 0 and "haas-vf2" in r.stderr and "shipped profiles" in r.stderr,
+      "an unknown profile name lists the shipped ones")
+
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

@@ -163,7 +163,9 @@ struct MachineProfile {
   std::string name;
   std::string source_path; // file it came from
   bool by_default = false; // nothing named it: the generic profile stood in (said in headers)
-  std::string dialect;     // controller dialect name (see gcode.hpp), or "auto": detected
+  // One line on what the profile is and what its numbers rest on (`ncjoule profiles`).
+  std::string summary;
+  std::string dialect; // controller dialect name (see gcode.hpp), or "auto": detected
   // With dialect "auto": the machine's own control, used when nothing in a program names one.
   std::string fallback_dialect;
   // The tool moves cut with where the program selects none and describes none ([default_tool]).

@@ -55,11 +55,13 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
                  "Tool N:TYPE:DIAMETER[:EXTRA], e.g. 1:flat:6, 2:ball:6, 3:bullnose:10:1.5, "
                  "4:drill:6.8:118, 5:chamfer:12:90 (repeatable; overrides header comments)")
       ->allow_extra_args(false); // one tool per --tool, so the program's file name is not taken
-  cmd.add_option("--material", s.material,
-                 "Workpiece material (aluminium-alloy, brass, cast-iron, mild-steel, alloy-steel, "
-                 "stainless-steel, titanium-alloy, plastic, wood, mdf, ...; docs/models.md): the "
-                 "cutting energy of profiles that take it from the material; default: the job "
-                 "file's, else the profile's");
+  cmd.add_option(
+      "--material", s.material,
+      "Workpiece material (aluminium-alloy, cast-aluminium, brass, cast-iron, mild-steel, "
+      "medium-carbon-steel, alloy-steel, stainless-steel, titanium-alloy, plastic, wood, "
+      "softwood, mdf, ...; docs/models.md): the "
+      "cutting energy of profiles that take it from the material; default: the job "
+      "file's, else the profile's");
   cmd.add_option("-t,--tool-table", s.tool_table,
                  "LinuxCNC tool table (.tbl): lengths for G43, and a tool for every entry with "
                  "a diameter (its comment names the shape, else a flat end mill)");

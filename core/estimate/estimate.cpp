@@ -406,7 +406,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   plan_options.look_ahead_batch = options.look_ahead_batch;
   EstimateOptions folding = options;
   for (const auto& [number, tool] : e.tools)
-    if (tool.flutes > 0) folding.energy.flutes[number] = tool.flutes;
+    folding.energy.flutes[number] = tool.flutes > 0 ? tool.flutes : typical_flutes(tool);
   std::vector<RemovalSimulator*> setup_removals;
   for (const auto& removal : removals)
     setup_removals.push_back(removal.get());

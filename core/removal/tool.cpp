@@ -75,6 +75,14 @@ double Tool::section_radius(double t) const {
   return R;
 }
 
+int typical_flutes(const Tool& tool) {
+  const double d = tool.diameter_mm;
+  if (tool.shape == ToolShape::Drill || tool.shape == ToolShape::Chamfer || d < 3) return 2;
+  if (d <= 12) return 3;
+  if (d <= 25) return 4;
+  return std::max(4, int(std::lround(d / 12)));
+}
+
 std::string_view tool_shape_name(ToolShape shape) {
   switch (shape) {
   case ToolShape::FlatEndMill:

@@ -230,7 +230,7 @@ TEST_CASE("[power]: cutting term, material, efficiency and spindle rating are re
   CHECK(generic.power.zhou.c3 ==
         doctest::Approx(find_material("aluminium-alloy")->kc_j_mm3 / 1000 / 0.8));
   CHECK(generic.power.zhou.c4 == 0);
-  CHECK(generic.power.cutting_source.find("Kalpakjian") != std::string::npos);
+  CHECK(generic.power.cutting_source.find("ISCAR") != std::string::npos);
   const MachineProfile zhou = load_profile(sample_path("zhou2017-anziani2025.toml"));
   CHECK(zhou.power.cutting_term == CuttingTerm::Fitted);
   CHECK(zhou.power.zhou.fitted_rpm_min == 500);

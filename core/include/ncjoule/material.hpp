@@ -1,7 +1,8 @@
 // ncjoule workpiece materials: how much energy it takes to cut them, with the source of every
 // number (core/machine/materials.cpp holds the table). The combined power model can take its
 // cutting term from the material: P_cut = k_c * MRR / efficiency, written in Zhou's form as
-// c3 * n^c4 * MRR with c3 = k_c / (1000 * efficiency) kW per mm^3/s and c4 = 0.
+// c3 * n^c4 * MRR with c3 = k_c / (1000 * efficiency) kW per mm^3/s and c4 = 0; where the material
+// has Kienzle's constants the energy stage scales it by k_c(h) / k_c for the cut's chip.
 #pragma once
 
 #include <optional>

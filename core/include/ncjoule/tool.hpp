@@ -50,6 +50,12 @@ struct Tool {
 
 std::string_view tool_shape_name(ToolShape shape); // "flat end mill", ...
 
+// The cutting edges a tool of its kind and size typically has, where nothing says (for the
+// chip thickness of the cutting term): drills and engraving V-bits 2; end mills 2 below 3 mm,
+// 3 to 12 mm, 4 to 25 mm; larger cutters (face and shell mills) one insert per 12 mm of
+// diameter, at least 4.
+int typical_flutes(const Tool& tool);
+
 // Checks a tool for sizes removal cannot use (no diameter, corner radius larger than the
 // radius, tip angle outside (0, 180)); empty when it is usable.
 std::string tool_problem(const Tool& tool);

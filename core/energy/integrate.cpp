@@ -63,6 +63,26 @@ void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
     seg->start.cutting_factor = seg->end.cutting_factor = factor;
 }
 
+// The speeds the spindle runs at: above its maximum the control clamps the speed (counted so,
+// and said once); outside the speeds its line was measured over, its power is extrapolated
+// (said once in the totals, with how far).
+void EnergyIntegrator::note_spindle(const CanonCommand& command, OperatingSegment* first,
+                                    OperatingSegment* last) {
+  const double max = constants_.spindle_max_rpm;
+  for (OperatingSegment* seg = first; seg != last; ++seg)
+    for (OperatingPoint* p : {&seg->start, &seg->end}) {
+      if (!(p->spindle_on > 0) || !(p->spindle_rpm > 0)) continue;
+      if (max > 0 && p->spindle_rpm > max) {
+        if (over_max_line_ < 0) over_max_line_ = command.line, over_max_rpm_ = p->spindle_rpm;
+        p->spindle_rpm = max;
+      }
+      if (spindle_rpm_max_ == 0 || p->spindle_rpm > spindle_rpm_max_)
+        spindle_rpm_max_ = p->spindle_rpm, spindle_rpm_max_line_ = command.line;
+      if (spindle_rpm_min_ == 0 || p->spindle_rpm < spindle_rpm_min_)
+        spindle_rpm_min_ = p->spindle_rpm;
+    }
+}
+
 // Material removed with the spindle stopped (no M3/M4 yet, an M5 before, or S0): on the machine
 // the tool would break, unless the spindle is one switched by hand (a router's). Counted as
 // turning at the speed the program last set (S without M3), else the profile's
@@ -152,6 +172,7 @@ CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& comma
   append_operating_segments(index, command, timed, removal, previous_rpm_, segments, diagnostics);
   if (removal && removal->removed_mm3 > 0)
     spin_for_stopped_cut(command, segments.data() + first, segments.data() + segments.size());
+  note_spindle(command, segments.data() + first, segments.data() + segments.size());
   correct_for_chip_thickness(command, segments.data() + first, segments.data() + segments.size());
   return integrate(index, command, timed, segments.data() + first,
                    segments.data() + segments.size(), removal ? removal->removed_mm3 : 0.0);
@@ -168,6 +189,31 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   result.co2_kg = kwh * options_.co2_kg_per_kwh.value_or(constants_.co2_kg_per_kwh);
   result.cost = kwh * options_.price_per_kwh.value_or(constants_.price_per_kwh);
   result.currency = options_.currency.value_or(constants_.currency);
+  if (over_max_line_ >= 0) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "S%g is above the spindle's maximum of %g rpm (spindle_max_rpm): the control "
+                  "runs it at %g rpm, and so is it counted",
+                  over_max_rpm_, constants_.spindle_max_rpm, constants_.spindle_max_rpm);
+    result.diagnostics.push_back({Severity::Warning, "", over_max_line_ + 1, 0, text});
+  }
+  const PavanaskarConstants& pav = constants_.pavanaskar;
+  if (constants_.model != PowerModel::Zhou && pav.spindle_fitted_rpm_max > 0 &&
+      spindle_rpm_max_ > 0 &&
+      (spindle_rpm_max_ > pav.spindle_fitted_rpm_max ||
+       spindle_rpm_min_ < pav.spindle_fitted_rpm_min)) {
+    const bool above = spindle_rpm_max_ > pav.spindle_fitted_rpm_max;
+    const double factor = above ? spindle_rpm_max_ / pav.spindle_fitted_rpm_max
+                                : pav.spindle_fitted_rpm_min / spindle_rpm_min_;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the spindle's power line was measured at %g-%g rpm; this program runs it at "
+                  "%g-%g rpm (%.1fx %s): its spindle power is extrapolated",
+                  pav.spindle_fitted_rpm_min, pav.spindle_fitted_rpm_max, spindle_rpm_min_,
+                  spindle_rpm_max_, factor, above ? "above" : "below");
+    result.diagnostics.push_back(
+        {Severity::Warning, "", above ? spindle_rpm_max_line_ + 1 : 0, 0, text});
+  }
   if (stopped_cuts_ > 0) {
     char text[480];
     const int more = int(stopped_cuts_ - 1);

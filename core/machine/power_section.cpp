@@ -13,6 +13,12 @@ PavanaskarConstants read_pavanaskar(TableReader t, std::vector<std::string>& sou
   p.coolant_w = t.quantity("coolant", Dimension::Power, Range::NonNegative);
   p.spindle_ka_w = t.quantity("spindle_ka", Dimension::Power, Range::Any);
   p.spindle_kb_w_per_rpm = t.quantity("spindle_kb", Dimension::PowerPerRpm, Range::NonNegative);
+  p.spindle_fitted_rpm_min =
+      t.optional_number("spindle_fitted_rpm_min", Range::NonNegative).value_or(0);
+  p.spindle_fitted_rpm_max =
+      t.optional_number("spindle_fitted_rpm_max", Range::NonNegative).value_or(0);
+  if (p.spindle_fitted_rpm_max > 0 && p.spindle_fitted_rpm_max < p.spindle_fitted_rpm_min)
+    t.fail("spindle_fitted_rpm_max", "must not be below spindle_fitted_rpm_min");
   constexpr std::array<const char*, 3> names{"x", "y", "z"};
   for (std::size_t i = 0; i < names.size(); ++i) {
     TableReader axis = t.table(names[i]);
@@ -137,6 +143,8 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   p.spindle_power_curve = read_power_curve(t, "spindle_power_curve_rpm_w");
   if (const auto rpm = t.optional_number("hand_spindle_rpm", Range::Positive))
     p.hand_spindle_rpm = *rpm;
+  if (const auto rpm = t.optional_number("spindle_max_rpm", Range::Positive))
+    p.spindle_max_rpm = *rpm;
   if (auto zhou = needs_zhou ? std::optional(t.table("zhou")) : t.optional_table("zhou"))
     p.zhou = read_zhou(*zhou, sources);
   t.finish();

@@ -211,8 +211,8 @@ TEST_CASE("with flutes known, a material with Kienzle's constants corrects for c
 }
 
 TEST_CASE("material removed with the spindle stopped is said, and counted at a known speed") {
-  // A 6 mm slot 2 mm deep and 50 mm long in aluminium at 18,000 rpm, F800, 3 flutes: 0.0148 mm
-  // a tooth, a 0.0094 mm mean chip; Kienzle's k_c there over the 0.8 efficiency, per mm^3.
+  // A 6 mm slot 2 mm deep and 50 mm long in aluminium at 9000 rpm, F800, 3 flutes: 0.0296 mm
+  // a tooth, a 0.0189 mm mean chip; Kienzle's k_c there over the 0.8 efficiency, per mm^3.
   const auto program = [](const std::string& spindle) {
     return "G21 G90\n(T1 D=6. CR=0. - ZMIN=-2. - FLAT END MILL)\nT1 M6\n" + spindle +
            "G0 X0 Y0 Z5\nG1 Z-2 F300\nG1 X50 F800\nG0 Z5\nM2\n";
@@ -227,12 +227,14 @@ TEST_CASE("material removed with the spindle stopped is said, and counted at a k
   };
   MachineProfile machine = generic();
   const Estimate running =
-      estimate_program(make_source("a.nc", program("S18000 M3\n")), machine, options);
+      estimate_program(make_source("a.nc", program("S9000 M3\n")), machine, options);
   REQUIRE(running.energy.removed_mm3 > 0);
   CHECK_FALSE(warned(running, "spindle stopped"));
   const double expected_cut = running.energy.removed_mm3 *
-                              find_material("aluminium")->kc_at(800.0 / 18000 / 3 * 2 / M_PI) / 0.8;
-  CHECK(cutting_j(running) == doctest::Approx(expected_cut).epsilon(0.02));
+                              find_material("aluminium")->kc_at(800.0 / 9000 / 3 * 2 / M_PI) / 0.8;
+  // (The plunge's 57 mm^3 at F300 have a thinner chip, a higher k_c: about 2.5% more.)
+  CHECK(cutting_j(running) == doctest::Approx(expected_cut).epsilon(0.04));
+  CHECK(cutting_j(running) > expected_cut);
   // No M3 and no S: the cut is said, and its energy is not counted.
   const Estimate bare = estimate_program(make_source("b.nc", program("")), machine, options);
   CHECK(warned(bare, "spindle stopped (no M3/M4 and no S) here and in 1 more moves"));
@@ -240,13 +242,13 @@ TEST_CASE("material removed with the spindle stopped is said, and counted at a k
   CHECK(cutting_j(bare) == 0);
   // S without M3: counted at the program's speed.
   const Estimate s_only =
-      estimate_program(make_source("c.nc", program("S18000\n")), machine, options);
-  CHECK(warned(s_only, "counted as turning at 18000 rpm (the program's last S)"));
+      estimate_program(make_source("c.nc", program("S9000\n")), machine, options);
+  CHECK(warned(s_only, "counted as turning at 9000 rpm (the program's last S)"));
   CHECK(cutting_j(s_only) == doctest::Approx(cutting_j(running)).epsilon(1e-6));
   // A hand spindle the profile describes: its speed, spindle power only while it cuts.
-  machine.power.hand_spindle_rpm = 18000;
+  machine.power.hand_spindle_rpm = 9000;
   const Estimate hand = estimate_program(make_source("d.nc", program("")), machine, options);
-  CHECK(warned(hand, "counted as turning at 18000 rpm (the profile's hand_spindle_rpm)"));
+  CHECK(warned(hand, "counted as turning at 9000 rpm (the profile's hand_spindle_rpm)"));
   CHECK(cutting_j(hand) == doctest::Approx(cutting_j(running)).epsilon(1e-6));
   CHECK(spindle_j(hand) > 0);
   CHECK(spindle_j(hand) < spindle_j(running)); // not while it positions

@@ -264,6 +264,12 @@ private:
   bool cut_seen_ = false;
   // Material removed with the spindle stopped: the first such line (-1: none), how many such
   // commands, and the speed they were counted at (0: none known).
+  // Spindle speeds asked for: the highest (and where), the lowest running one, and the
+  // first line asking for more than the spindle's maximum.
+  double spindle_rpm_min_ = 0, spindle_rpm_max_ = 0;
+  int spindle_rpm_max_line_ = -1, over_max_line_ = -1;
+  double over_max_rpm_ = 0;
+  void note_spindle(const CanonCommand& command, OperatingSegment* first, OperatingSegment* last);
   int stopped_cut_line_ = -1;
   std::size_t stopped_cuts_ = 0;
   double stopped_cut_rpm_ = 0;

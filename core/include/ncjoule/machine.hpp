@@ -66,6 +66,9 @@ struct PavanaskarConstants {
   std::array<double, 3> move_kb_w_per_mm_s{};
   std::array<double, 3> cut_ka_w{};
   std::array<double, 3> cut_kb_w_per_mm3_s{};
+  // The spindle speeds the spindle line was measured (or estimated) over (0: not declared):
+  // outside them its power is extrapolated, and a warning says how far.
+  double spindle_fitted_rpm_min = 0, spindle_fitted_rpm_max = 0;
 };
 
 // Zhou et al. as fitted by Anziani: P = c1 + c2*n + c3*n^c4*MRR. Stored in the thesis's units
@@ -112,6 +115,9 @@ struct PowerConstants {
   // counted at it. 0: not known (their spindle and cutting energy are then not counted, and
   // a warning says so).
   double hand_spindle_rpm = 0;
+  // The spindle's highest speed (0: not given): a program asking for more is warned about and
+  // counted at it, as the control clamps the speed.
+  double spindle_max_rpm = 0;
   double co2_kg_per_kwh = 0;
   double price_per_kwh = 0;
   std::string currency = "EUR";

@@ -1,6 +1,8 @@
 #include "setups.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "ncjoule/machine.hpp"
@@ -37,6 +39,20 @@ bool SetupScan::names_setup(std::string_view text) {
 }
 
 void SetupScan::add(const CanonCommand& c, std::size_t index) {
+  if (c.kind == CanonKind::Traverse && cut_since_start_) {
+    const double turned[3] = {c.end.a - c.start.a, c.end.b - c.start.b, c.end.c - c.start.c};
+    static const char* const names = "ABC";
+    for (int i = 0; i < 3; ++i) {
+      if (!(std::abs(turned[i]) > 1e-9)) continue;
+      const double to = i == 0 ? c.end.a : i == 1 ? c.end.b : c.end.c;
+      char text[96];
+      std::snprintf(text, sizeof text, "the part turned: %c%g (a rotary index)", names[i], to);
+      starts_.push_back({index, c.line, text});
+      cut_since_start_ = stopped_ = false;
+      return;
+    }
+  }
+  if (c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) cut_since_start_ = true;
   if (c.kind == CanonKind::ProgramStop || c.kind == CanonKind::OptionalStop) {
     if (!stopped_) {
       stopped_ = true;
@@ -51,6 +67,7 @@ void SetupScan::add(const CanonCommand& c, std::size_t index) {
     const int old = work_offset_;
     work_offset_ = int(c.value);
     if (stopped_ && work_offset_ != old) {
+      cut_since_start_ = false;
       starts_.push_back({stop_index_ + 1, c.line,
                          stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then " +
                              work_offset_name(work_offset_)});
@@ -63,12 +80,12 @@ void SetupScan::add(const CanonCommand& c, std::size_t index) {
     starts_.push_back(
         {stop_index_ + 1, c.line,
          stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then (" + comment + ")"});
-    stopped_ = false;
+    stopped_ = cut_since_start_ = false;
   } else if (c.kind == CanonKind::Probe) {
     starts_.push_back(
         {stop_index_ + 1, c.line,
          stop_code_ + " at line " + std::to_string(stop_line_ + 1) + ", then a probing move"});
-    stopped_ = false;
+    stopped_ = cut_since_start_ = false;
   } else if (c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) {
     stopped_ = false; // the same part goes on being cut
   }

@@ -8,6 +8,12 @@
 // A stop alone does not start a setup (posts write M1 between every operation); it starts one
 // when, before the next cutting move, the program selects another work offset, probes, or has
 // a comment naming a setup ("SETUP 2", "FLIP PART", "SECOND SIDE", ...).
+//
+// A rotary table or fourth axis turns the part without a stop: a positioning move that turns
+// A, B or C after the part has been cut ("G0 A180", 3+1 indexing) presents another side, and
+// starts a setup too. Removal is 3-axis, so each side's cuts are read in the table's frame: one
+// stock for all sides would stack them into one tall block. A feed move that turns a rotary axis
+// (simultaneous 4-axis cutting) starts none.
 #pragma once
 
 #include <cstddef>
@@ -46,6 +52,7 @@ private:
   int looked_to_ = -1; // comments read up to this line
   std::vector<SetupStart> starts_;
   int work_offset_ = 1;
+  bool cut_since_start_ = false; // a cutting move since the current setup began
   bool stopped_ = false;
   std::size_t stop_index_ = 0;
   int stop_line_ = 0;

@@ -124,11 +124,17 @@ TEST_CASE("a program that turns a rotary axis: removal is labelled an approximat
   const Estimate three_axis =
       estimate_program(make_source("flat.nc", flat + "M30\n"), machine, options);
   CHECK_FALSE(warned(three_axis, "rotary axis"));
-  // Turned half round, the same cut again: on the machine it cuts the other side of the part.
+  // Turning while it cuts (4-axis): the stock does not turn in the model.
   const Estimate four_axis = estimate_program(
-      make_source("b.nc", flat + "G0 B180\nG1 Z-1 F100\nG1 X-10 F600\nG0 Z5\nM30\n"), machine,
-      options);
+      make_source("b.nc", flat + "G1 Z-1 F100\nG1 B180 X-10 F600\nG0 Z5\nM30\n"), machine, options);
   CHECK(warned(four_axis, "the program turns a rotary axis (A/B/C) here"));
   for (const Diagnostic& d : four_axis.diagnostics)
-    if (d.message.find("rotary axis (A/B/C) here") != std::string::npos) CHECK(d.line == 9);
+    if (d.message.find("rotary axis (A/B/C) here") != std::string::npos) CHECK(d.line == 10);
+  // Turned half round between cuts (3+1 indexing), the same cut again: the other side of the
+  // part, a setup of its own with its own stock (setups_test.cpp), said by its reason.
+  const Estimate indexed = estimate_program(
+      make_source("c.nc", flat + "G0 B180\nG1 Z-1 F100\nG1 X-10 F600\nG0 Z5\nM30\n"), machine,
+      options);
+  REQUIRE(indexed.setups.size() == 2);
+  CHECK(indexed.setups[1].reason == "the part turned: B180 (a rotary index)");
 }

@@ -188,3 +188,19 @@ TEST_CASE("G41 in control offsets the contour, in wear (job or profile) it runs 
   const Estimate forced = estimate_program(make_source("c.nc", program), shop, job_control);
   CHECK(forced.time.cutting_s() == doctest::Approx(control.time.cutting_s()));
 }
+
+TEST_CASE("a rotary index after cutting (G0 A180) starts a setup, 4-axis cutting does not") {
+  const Estimate e =
+      estimate_program(make_source("index.nc", two_sides("G0 Z20\nG0 A180")), generic(), {});
+  REQUIRE_FALSE(e.failed);
+  REQUIRE(e.setups.size() == 2);
+  CHECK(e.setups[1].reason == "the part turned: A180 (a rotary index)");
+  // Each side removes its own pocket from its own stock, as with a flip.
+  CHECK(e.setups[0].removed_mm3 > 1100);
+  CHECK(e.setups[1].removed_mm3 == doctest::Approx(e.setups[0].removed_mm3).epsilon(0.01));
+  // Turning before anything is cut (the part's first side) and turning while feeding start none.
+  CHECK(estimate_program(make_source("first.nc", "G0 A90\n" + two_sides("G0 Z20")), generic(), {})
+            .setups.size() == 1);
+  CHECK(estimate_program(make_source("wrap.nc", two_sides("G1 A180 F500")), generic(), {})
+            .setups.size() == 1);
+}

@@ -1,6 +1,5 @@
 #include "user_config.hpp"
 
-#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +10,7 @@
 
 #include "cli_support.hpp"
 
+#include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
 
 namespace ncjoule::cli {
@@ -176,17 +176,13 @@ std::string resolve_machine(const std::string& name) {
   if (name.empty() || fs::exists(name, ec) || name.find('/') != std::string::npos ||
       name.find('\\') != std::string::npos)
     return name;
-  std::string wanted;
-  for (char c : name)
-    wanted += char(std::tolower(static_cast<unsigned char>(c)));
+  std::string wanted = to_lower(name);
   if (wanted.size() > 5 && wanted.compare(wanted.size() - 5, 5, ".toml") == 0)
     wanted.resize(wanted.size() - 5);
   const auto shipped = shipped_profiles();
   std::vector<std::string> starting;
   for (const auto& [stem, path] : shipped) {
-    std::string low;
-    for (char c : stem)
-      low += char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string low = to_lower(stem);
     if (low == wanted) return path;
     if (low.rfind(wanted, 0) == 0) starting.push_back(path);
   }

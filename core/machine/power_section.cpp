@@ -1,10 +1,22 @@
 #include <array>
 #include <cmath>
+#include <string>
+#include <tuple>
+#include <utility>
 
 #include "sections.hpp"
 
 namespace ncjoule::profile_detail {
 namespace {
+
+// An optional range [<stem>_min, <stem>_max] of non-negative numbers (0: not declared), its
+// maximum not below its minimum.
+std::pair<double, double> optional_range(TableReader& t, const std::string& stem) {
+  const double lo = t.optional_number(stem + "_min", Range::NonNegative).value_or(0);
+  const double hi = t.optional_number(stem + "_max", Range::NonNegative).value_or(0);
+  if (hi > 0 && hi < lo) t.fail(stem + "_max", "must not be below " + stem + "_min");
+  return {lo, hi};
+}
 
 PavanaskarConstants read_pavanaskar(TableReader t, std::vector<std::string>& sources) {
   PavanaskarConstants p;
@@ -13,12 +25,8 @@ PavanaskarConstants read_pavanaskar(TableReader t, std::vector<std::string>& sou
   p.coolant_w = t.quantity("coolant", Dimension::Power, Range::NonNegative);
   p.spindle_ka_w = t.quantity("spindle_ka", Dimension::Power, Range::Any);
   p.spindle_kb_w_per_rpm = t.quantity("spindle_kb", Dimension::PowerPerRpm, Range::NonNegative);
-  p.spindle_fitted_rpm_min =
-      t.optional_number("spindle_fitted_rpm_min", Range::NonNegative).value_or(0);
-  p.spindle_fitted_rpm_max =
-      t.optional_number("spindle_fitted_rpm_max", Range::NonNegative).value_or(0);
-  if (p.spindle_fitted_rpm_max > 0 && p.spindle_fitted_rpm_max < p.spindle_fitted_rpm_min)
-    t.fail("spindle_fitted_rpm_max", "must not be below spindle_fitted_rpm_min");
+  std::tie(p.spindle_fitted_rpm_min, p.spindle_fitted_rpm_max) =
+      optional_range(t, "spindle_fitted_rpm");
   constexpr std::array<const char*, 3> names{"x", "y", "z"};
   for (std::size_t i = 0; i < names.size(); ++i) {
     TableReader axis = t.table(names[i]);
@@ -43,14 +51,12 @@ ZhouConstants read_zhou(TableReader t, std::vector<std::string>& sources) {
   z.d2 = t.number("d2", Range::NonNegative);
   z.d3 = t.number("d3", Range::NonNegative);
   z.d4 = t.number("d4", Range::NonNegative);
-  z.fitted_rpm_min = t.optional_number("fitted_rpm_min", Range::NonNegative).value_or(0);
-  z.fitted_rpm_max = t.optional_number("fitted_rpm_max", Range::NonNegative).value_or(0);
+  std::tie(z.fitted_rpm_min, z.fitted_rpm_max) = optional_range(t, "fitted_rpm");
+  // Its keys carry the unit after min/max: fitted_mrr_min_mm3_s.
   z.fitted_mrr_min_mm3_s =
       t.optional_number("fitted_mrr_min_mm3_s", Range::NonNegative).value_or(0);
   z.fitted_mrr_max_mm3_s =
       t.optional_number("fitted_mrr_max_mm3_s", Range::NonNegative).value_or(0);
-  if (z.fitted_rpm_max > 0 && z.fitted_rpm_max < z.fitted_rpm_min)
-    t.fail("fitted_rpm_max", "must not be below fitted_rpm_min");
   if (z.fitted_mrr_max_mm3_s > 0 && z.fitted_mrr_max_mm3_s < z.fitted_mrr_min_mm3_s)
     t.fail("fitted_mrr_max_mm3_s", "must not be below fitted_mrr_min_mm3_s");
   t.finish();

@@ -195,38 +195,75 @@ void StockExtent::add(const CanonCommand& cmd) {
   PerTool& t = tools_[cmd.state.tool];
   const bool across_xy = travels_in_xy(cmd);
   const bool level = across_xy && std::abs(cmd.end.z - cmd.start.z) <= kSameZMm;
-  constexpr double kLevelMm = 1e-6;
-  Extent* into = &t.other;
   if (level) {
-    const bool plunged = !std::isnan(t.first_plunge_start);
-    // After the first plunge, a level move at or above its start crosses a clearance plane.
-    if (plunged && cmd.start.z >= t.first_plunge_start - kLevelMm) {
-      ++t.above_plunge;
-      t.length += move_length(cmd);
+    // Straight on from the rise (no rapid between: a rapid down beside the part and a cut in
+    // from the side is not a link).
+    constexpr double kSameMm = 1e-6;
+    const bool continues = std::abs(cmd.start.x - t.hop_from.x) <= kSameMm &&
+                           std::abs(cmd.start.y - t.hop_from.y) <= kSameMm &&
+                           std::abs(cmd.start.z - t.hop_from.z) <= kSameMm;
+    if (t.rose && continues && t.hop.size() < kMaxHopMoves) {
+      t.hop.push_back(cmd);
+      t.hop_from = cmd.end;
       return;
     }
-    const double feed = cmd.state.feed_mode == FeedMode::UnitsPerMinute ? cmd.state.feed : 0.0;
-    auto it = std::find_if(t.levels.begin(), t.levels.end(),
-                           [&](const Level& l) { return l.feed == feed; });
-    if (it == t.levels.end()) {
-      // A program of many feeds: those past kMaxFeeds share the last bucket.
-      if (t.levels.size() < kMaxFeeds) t.levels.push_back(Level{feed});
-      it = t.levels.end() - 1;
-    }
-    into = plunged ? &it->after : &it->before;
-    ++(plunged ? it->moves_after : it->moves_before);
-  } else if (cmd.end.z < cmd.start.z && std::isnan(t.first_plunge_start)) {
-    t.first_plunge_start = cmd.start.z;
+    flush_hop(t); // a long run at one height after a rise: a waterline stepping up, cutting
+    add_level(t, cmd);
+    return;
   }
-  into->include(cmd.start);
-  into->include(cmd.end);
+  if (!t.hop.empty() && cmd.end.z < cmd.start.z) {
+    // Up, across, down: the moves across linked two cuts at a retract height.
+    for (const CanonCommand& link : t.hop)
+      ++t.above_plunge, t.length += move_length(link);
+    t.hop.clear();
+  }
+  flush_hop(t);
+  t.rose = !across_xy && cmd.end.z > cmd.start.z;
+  t.hop_from = cmd.end;
+  if (cmd.end.z < cmd.start.z && std::isnan(t.first_plunge_start))
+    t.first_plunge_start = cmd.start.z;
+  include_move(t, t.other, cmd);
+  if (across_xy) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
+}
+
+void StockExtent::flush_hop(PerTool& t) {
+  std::vector<CanonCommand> held;
+  held.swap(t.hop);
+  t.rose = false;
+  for (const CanonCommand& cmd : held)
+    add_level(t, cmd);
+}
+
+void StockExtent::add_level(PerTool& t, const CanonCommand& cmd) {
+  constexpr double kLevelMm = 1e-6;
+  const bool plunged = !std::isnan(t.first_plunge_start);
+  // After the first plunge, a level move at or above its start crosses a clearance plane.
+  if (plunged && cmd.start.z >= t.first_plunge_start - kLevelMm) {
+    ++t.above_plunge;
+    t.length += move_length(cmd);
+    return;
+  }
+  const double feed = cmd.state.feed_mode == FeedMode::UnitsPerMinute ? cmd.state.feed : 0.0;
+  auto it = std::find_if(t.levels.begin(), t.levels.end(),
+                         [&](const Level& l) { return l.feed == feed; });
+  if (it == t.levels.end()) {
+    // A program of many feeds: those past kMaxFeeds share the last bucket.
+    if (t.levels.size() < kMaxFeeds) t.levels.push_back(Level{feed});
+    it = t.levels.end() - 1;
+  }
+  ++(plunged ? it->moves_after : it->moves_before);
+  include_move(t, plunged ? it->after : it->before, cmd);
+}
+
+void StockExtent::include_move(PerTool& t, Extent& into, const CanonCommand& cmd) {
+  into.include(cmd.start);
+  into.include(cmd.end);
   // An arc's sides bulge past its end points: walk along it.
   if (cmd.kind == CanonKind::Arc)
     for (int k = 1; k < 64; ++k)
-      into->include(point_on_move(cmd, k / 64.0));
+      into.include(point_on_move(cmd, k / 64.0));
   t.top_start = std::max(t.top_start, cmd.start.z);
   t.length += move_length(cmd);
-  if (across_xy && !level) t.top_travel = std::max(t.top_travel, std::max(cmd.start.z, cmd.end.z));
   if (levels_.size() < kMaxLevels) {
     levels_.push_back(cmd.start.z);
     levels_.push_back(cmd.end.z);
@@ -267,7 +304,20 @@ StockExtent::Extent StockExtent::cutting_levels_of(const PerTool& t, std::size_t
   return out;
 }
 
+bool StockExtent::holds_hops() const {
+  return std::any_of(tools_.begin(), tools_.end(),
+                     [](const auto& entry) { return !entry.second.hop.empty(); });
+}
+
+StockExtent StockExtent::settled() const {
+  StockExtent out = *this; // hops still held at the end: nothing came down after them
+  for (auto& [number, t] : out.tools_)
+    out.flush_hop(t);
+  return out;
+}
+
 std::size_t StockExtent::positioning_moves() const {
+  if (holds_hops()) return settled().positioning_moves();
   std::size_t positioning = 0;
   for (const auto& [number, t] : tools_)
     cutting_levels_of(t, positioning);
@@ -275,6 +325,7 @@ std::size_t StockExtent::positioning_moves() const {
 }
 
 std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
+  if (holds_hops()) return settled().box(tools);
   constexpr double inf = std::numeric_limits<double>::infinity();
   Box3 b{inf, inf, inf, -inf, -inf, -inf};
   double top_level = -inf;  // highest Z of a level move that cuts
@@ -306,6 +357,7 @@ std::optional<Box3> StockExtent::box(const std::map<int, Tool>& tools) const {
 }
 
 std::vector<double> StockExtent::cutting_levels() const {
+  if (holds_hops()) return settled().cutting_levels();
   std::vector<double> levels = levels_;
   std::sort(levels.begin(), levels.end());
   levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
@@ -313,6 +365,7 @@ std::vector<double> StockExtent::cutting_levels() const {
 }
 
 double StockExtent::cutting_length(int number) const {
+  if (holds_hops()) return settled().cutting_length(number);
   const auto it = tools_.find(number);
   return it == tools_.end() ? 0.0 : it->second.length;
 }

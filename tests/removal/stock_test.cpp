@@ -237,6 +237,44 @@ TEST_CASE("default stock: level feed moves at the first plunge's height are posi
   CHECK(flat_extent.positioning_moves() == 0);
 }
 
+TEST_CASE("default stock: up, across at the cutting feed, down is a link, not a cut") {
+  // Personal-use Fusion: every move at the cutting feed. After a pass at Z2 the tool rises to
+  // its retract height Z20, crosses there and comes down for the next pass; the first plunge
+  // started higher (Z30), so the plunge's height alone does not tell the link from a cut.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(1000).rapid(0, 0, 30).feed(0, 0, 20).feed(0, 0, 2).feed(40, 0, 2);
+  p.feed(40, 0, 20).feed(40, 30, 20).feed(0, 30, 20).feed(0, 30, 4).feed(40, 30, 4);
+  StockExtent extent;
+  for (const CanonCommand& c : p.commands())
+    extent.add(c);
+  auto box = extent.box(tools);
+  REQUIRE(box);
+  CHECK(box->zmax == 4); // the highest pass, not the retract height
+  CHECK(extent.positioning_moves() == 2);
+  // A waterline stepping up (rise, a pass at the new height, rise again) cuts at every height.
+  ProgramBuilder up;
+  up.tool(1).feed_rate(1000).rapid(0, 0, 30).feed(0, 0, -4).feed(40, 0, -4).feed(40, 0, -2);
+  up.feed(0, 0, -2).feed(0, 0, 0).feed(40, 0, 0).feed(40, 0, 10);
+  StockExtent waterline;
+  for (const CanonCommand& c : up.commands())
+    waterline.add(c);
+  box = waterline.box(tools);
+  REQUIRE(box);
+  CHECK(box->zmax == 0);
+  CHECK(waterline.positioning_moves() == 0);
+  // A rapid down beside the part between the rise and the pass: the pass cuts in from the side.
+  ProgramBuilder side;
+  side.tool(1).feed_rate(1000).rapid(-10, 0, 30).feed(-10, 0, -3).feed(40, 0, -3);
+  side.feed(40, 0, 5).rapid(-10, 20, 5).rapid(-10, 20, -1).feed(40, 20, -1).feed(40, 20, -3);
+  StockExtent side_extent;
+  for (const CanonCommand& c : side.commands())
+    side_extent.add(c);
+  box = side_extent.box(tools);
+  REQUIRE(box);
+  CHECK(box->zmax == -1);
+}
+
 TEST_CASE("a bad STL is a diagnostic naming the file and, in ASCII, the line") {
   std::vector<Diagnostic> problems;
   const std::string text = "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"

@@ -221,7 +221,22 @@ private:
     std::vector<Level> levels;    // by feed, at most kMaxFeeds (beyond: folded into the last)
     std::size_t above_plunge = 0; // level moves after the first plunge at or above its start
     double length = 0;
+    // A hop: level moves right after a straight rise in Z, held until the tool's next non-level
+    // move. A descent next makes them a link at a retract height (left out, as personal-use
+    // Fusion writes its retracts at the cutting feed); anything else makes them cuts.
+    bool rose = false;
+    Pose hop_from; // where the rise (or the last held move) ended
+    std::vector<CanonCommand> hop;
   };
+  static constexpr std::size_t kMaxHopMoves = 8;
+  // A level move of tool `t` into its levels (or left out above its first plunge).
+  void add_level(PerTool& t, const CanonCommand& cmd);
+  // Where a move counts in any case: its extent's corners and arc sides, length, levels.
+  void include_move(PerTool& t, Extent& into, const CanonCommand& cmd);
+  // The tool's held hop moves as cuts.
+  void flush_hop(PerTool& t);
+  bool holds_hops() const;
+  StockExtent settled() const; // a copy with every held hop taken as cuts
   static constexpr std::size_t kMaxLevels = 4096;
   static constexpr std::size_t kMaxFeeds = 64;
   // The tool's level moves that cut: not at a feed far above its cutting feed, not above its

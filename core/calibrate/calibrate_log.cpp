@@ -28,6 +28,8 @@ double fallback_scale(PP p) {
     return 1;
   case PP::SpindleKB:
     return 0.1;
+  case PP::SpindleKC:
+    return 1e-5;
   case PP::MoveKBX:
   case PP::MoveKBY:
   case PP::MoveKBZ:
@@ -210,7 +212,10 @@ LogFitResult fit_power_log(const PowerLog& log, const std::vector<OperatingSegme
     par.initial = get_parameter(initial, id);
     const bool asked_to_hold =
         std::find(options.hold.begin(), options.hold.end(), id) != options.hold.end();
-    par.held = asked_to_hold || (id == PP::ZhouC4);
+    // A profile with a straight spindle line keeps it straight: a log at a few speeds cannot
+    // tell the n^2 term from the n term.
+    const bool straight_spindle = id == PP::SpindleKC && par.initial == 0;
+    par.held = asked_to_hold || (id == PP::ZhouC4) || straight_spindle;
     linear.parameters.push_back(par);
   }
   linear.observations = observations(log, trace, model, layout, result.offset_s, initial.zhou.c4);

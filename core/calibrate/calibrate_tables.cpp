@@ -42,7 +42,9 @@ FitReport fit_line(PP ka, PP kb, const std::vector<std::pair<double, double>>& x
 }
 
 double spindle_power(const PowerConstants& k, double rpm) {
-  return rpm > 0 ? k.pavanaskar.spindle_ka_w + k.pavanaskar.spindle_kb_w_per_rpm * rpm : 0.0;
+  const PavanaskarConstants& p = k.pavanaskar;
+  return rpm > 0 ? p.spindle_ka_w + (p.spindle_kb_w_per_rpm + p.spindle_kc_w_per_rpm2 * rpm) * rpm
+                 : 0.0;
 }
 
 // For a model linear in all parameters but a power law's exponent: the exponent on a grid, the
@@ -115,12 +117,11 @@ FitReport fit_axis_cut(const std::vector<SteadyStateReading>& readings, Axis axi
                        const PowerConstants& known) {
   const int i = static_cast<int>(axis);
   const auto& pv = known.pavanaskar;
+  // A cut state holds its axis feeding: the model draws the cut line in place of the move line
+  // while material is removed (docs/models.md), so the move is not taken off the reading.
   std::vector<std::pair<double, double>> xy;
-  for (const auto& r : readings) {
-    const double move =
-        r.feed_mm_s > 0 ? pv.move_ka_w[i] + pv.move_kb_w_per_mm_s[i] * r.feed_mm_s : 0;
-    xy.emplace_back(r.mrr_mm3_s, r.power_w - pv.tare_w - spindle_power(known, r.rpm) - move);
-  }
+  for (const auto& r : readings)
+    xy.emplace_back(r.mrr_mm3_s, r.power_w - pv.tare_w - spindle_power(known, r.rpm));
   constexpr PP ka[3] = {PP::CutKAX, PP::CutKAY, PP::CutKAZ};
   constexpr PP kb[3] = {PP::CutKBX, PP::CutKBY, PP::CutKBZ};
   return fit_line(ka[i], kb[i], xy, std::string("axis ") + "xyz"[i] + " cutting");

@@ -106,7 +106,7 @@ std::string power_section_toml(const PowerConstants& k,
   out << "currency = " << quoted(k.currency) << "\n";
   out << kept.power;
   out << "\n[power.pavanaskar]\n" << source_line;
-  for (PP p : {PP::Tare, PP::Coolant, PP::SpindleKA, PP::SpindleKB})
+  for (PP p : {PP::Tare, PP::Coolant, PP::SpindleKA, PP::SpindleKB, PP::SpindleKC})
     line(p);
   const char* axes[3] = {"x", "y", "z"};
   for (int i = 0; i < 3; ++i) {

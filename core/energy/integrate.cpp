@@ -1,6 +1,7 @@
 // Energy per command and per program: the trapezoid rule over every segment of the operating
 // trace, component by component, so the components add up to the total by construction.
 #include <algorithm>
+#include <cmath>
 
 #include "ncjoule/energy.hpp"
 
@@ -43,6 +44,17 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
 // thickness of a slot; a narrower side cut has thinner chips and so a higher k_c, by up to 10-15%
 // at a sixth of the diameter: the radial engagement is not measured yet). The cutting term is
 // scaled by k_c(h_m) / k_c.
+// The mean chip of a cut of radial engagement a_e with a cutter of diameter D (Sandvik's
+// milling formula, 90 deg entering angle): h_m = f_z * (2 a_e / D) / arccos(1 - 2 a_e / D),
+// (2 / pi) f_z for a slot, thinner for a side cut. An engagement not known is taken as a slot.
+double mean_chip_thickness_mm(double per_tooth_mm, double radial_width_mm, double diameter_mm) {
+  constexpr double kSlot = 0.63661977236758134; // 2 / pi
+  if (!(radial_width_mm > 0) || !(diameter_mm > 0)) return kSlot * per_tooth_mm;
+  // Engagements of a hair's width (a column grazed at a step's end) are held at 1% of D.
+  const double ratio = std::clamp(radial_width_mm / diameter_mm, 0.01, 1.0);
+  return per_tooth_mm * 2 * ratio / std::acos(1 - 2 * ratio);
+}
+
 void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
                                                   OperatingSegment* first,
                                                   OperatingSegment* last) const {
@@ -57,10 +69,13 @@ void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
     rpm = std::max(seg->start.spindle_rpm, seg->end.spindle_rpm);
   if (!(rpm > 0)) return;
   const double per_tooth_mm = command.state.feed / (rpm * flutes->second);
-  constexpr double kSlotMeanChip = 0.63661977236758134; // 2 / pi
-  const double factor = material->kc_at(kSlotMeanChip * per_tooth_mm) / material->kc_j_mm3;
+  const auto diameter = options_.tool_diameters_mm.find(command.state.tool);
+  const double d = diameter == options_.tool_diameters_mm.end() ? 0.0 : diameter->second;
   for (OperatingSegment* seg = first; seg != last; ++seg)
-    seg->start.cutting_factor = seg->end.cutting_factor = factor;
+    for (OperatingPoint* p : {&seg->start, &seg->end}) {
+      const double h = mean_chip_thickness_mm(per_tooth_mm, p->radial_width_mm, d);
+      p->cutting_factor = material->kc_at(h) / material->kc_j_mm3;
+    }
 }
 
 // The speeds the spindle runs at: above its maximum the control clamps the speed (counted so,

@@ -44,6 +44,13 @@ void set_motion(OperatingPoint& op, const std::array<double, 3>& d, double speed
   op.mrr_mm3_s = mrr_mm3_s;
 }
 
+// The mean radial engagement of a step that removed `volume` at depth of cut `depth` over
+// `across` mm of XY travel; 0 where the step has no depth or goes straight down.
+double radial_width(double volume, double depth, double across) {
+  constexpr double kLeastMm = 1e-6;
+  return volume > 0 && depth > kLeastMm && across > kLeastMm ? volume / (depth * across) : 0.0;
+}
+
 std::array<double, 3> displacement(const Pose& a, const Pose& b) {
   return {b.x - a.x, b.y - a.y, b.z - a.z};
 }
@@ -57,7 +64,10 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
                        std::vector<OperatingSegment>& out) {
   const auto& s = tc.samples;
   const auto whole = displacement(cmd.start, cmd.end);
-  if (s.size() < 2) {
+  // Its two ends only (no removal asked for finer samples): their speeds are the entry and exit
+  // speeds, 0 for a move from rest to rest, and a line between them would lose the cruise. The
+  // mean speed over the move is exact for every term linear in speed.
+  if (s.size() < 3) {
     // No samples: constant speed over the duration, the removed volume spread evenly.
     const double mrr = removal ? removal->removed_mm3 / tc.duration_s : 0.0;
     const double length = tc.length_mm > 0 ? tc.length_mm : norm(whole);
@@ -77,6 +87,9 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
     OperatingPoint a = base, b = base;
     set_motion(a, d, s[k].speed_mm_s, mrr);
     set_motion(b, d, s[k + 1].speed_mm_s, mrr);
+    if (removal && k < removal->step_depth_mm.size())
+      a.radial_width_mm = b.radial_width_mm =
+          radial_width(volume, removal->step_depth_mm[k], std::hypot(d[0], d[1]));
     out.push_back({index, s[k].t_s, s[k + 1].t_s, a, b});
   }
 }
@@ -156,6 +169,7 @@ OperatingPoint operating_point_at(const std::vector<OperatingSegment>& trace, do
     held.axis_speed_mm_s = {};
     held.cut_share = {};
     held.mrr_mm3_s = 0;
+    held.radial_width_mm = 0;
     held.tool_change = 0;
     return held;
   }
@@ -173,6 +187,7 @@ OperatingPoint operating_point_at(const std::vector<OperatingSegment>& trace, do
     op.cut_share[i] = lerp(a.cut_share[i], b.cut_share[i]);
   }
   op.mrr_mm3_s = lerp(a.mrr_mm3_s, b.mrr_mm3_s);
+  op.radial_width_mm = lerp(a.radial_width_mm, b.radial_width_mm);
   op.tool_change = lerp(a.tool_change, b.tool_change);
   return op;
 }

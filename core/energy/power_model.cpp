@@ -27,11 +27,17 @@ void add_axis_motion_features(const OperatingPoint& op, PowerFeatures& f) {
   }
 }
 
+void drop_axis_motion_features(PowerFeatures& f) {
+  for (P p : {P::MoveKAX, P::MoveKAY, P::MoveKAZ, P::MoveKBX, P::MoveKBY, P::MoveKBZ})
+    f.linear[index(p)] = 0.0;
+}
+
 void add_shared_pavanaskar_features(const OperatingPoint& op, PowerFeatures& f) {
   f.linear[index(P::Tare)] = 1.0;
   f.linear[index(P::Coolant)] = op.coolant_on;
   f.linear[index(P::SpindleKA)] = op.spindle_on;
   f.linear[index(P::SpindleKB)] = op.spindle_on * op.spindle_rpm;
+  f.linear[index(P::SpindleKC)] = op.spindle_on * op.spindle_rpm * op.spindle_rpm;
   add_axis_motion_features(op, f);
 }
 
@@ -48,6 +54,10 @@ PowerFeatures power_features(PowerModel model, const OperatingPoint& op) {
       f.linear[index(ka[i])] = op.cut_share[i];
       f.linear[index(kb[i])] = op.cut_share[i] * op.mrr_mm3_s;
     }
+    // A cut state was measured with its axis feeding (Table 4.1: a cut cannot run without it),
+    // so while the tool cuts, the cut lines stand for the axes too: adding the move lines as
+    // well counts the axis drives twice (docs/models.md).
+    if (op.mrr_mm3_s > 0) drop_axis_motion_features(f);
     break;
   }
   case PowerModel::Combined:
@@ -103,6 +113,14 @@ double zhou_sec_model_j_mm3(const ZhouConstants& z, double rpm, double mrr_mm3_s
 std::string describe_power_constants(const PowerConstants& k) {
   char text[640];
   const auto& p = k.pavanaskar;
+  char spindle_text[96];
+  if (p.spindle_kc_w_per_rpm2 != 0)
+    std::snprintf(spindle_text, sizeof spindle_text, "%g W + %g W/rpm*n + %g W/rpm^2*n^2",
+                  p.spindle_ka_w, p.spindle_kb_w_per_rpm, p.spindle_kc_w_per_rpm2);
+  else
+    std::snprintf(spindle_text, sizeof spindle_text, "%g W + %g W/rpm*n", p.spindle_ka_w,
+                  p.spindle_kb_w_per_rpm);
+  const std::string spindle = spindle_text;
   const auto& z = k.zhou;
   switch (k.model) {
   case PowerModel::Zhou:
@@ -113,11 +131,11 @@ std::string describe_power_constants(const PowerConstants& k) {
     break;
   case PowerModel::Pavanaskar:
     std::snprintf(text, sizeof text,
-                  "Pavanaskar Eq. 3.12: tare %g W, coolant %g W, spindle %g W + %g W/rpm*n, "
+                  "Pavanaskar Eq. 3.12: tare %g W, coolant %g W, spindle %s, "
                   "move X/Y/Z KA %g/%g/%g W KB %g/%g/%g W/(mm/s), "
                   "cut X/Y/Z KA %g/%g/%g W KB %g/%g/%g W/(mm^3/s); tool change %g W",
-                  p.tare_w, p.coolant_w, p.spindle_ka_w, p.spindle_kb_w_per_rpm, p.move_ka_w[0],
-                  p.move_ka_w[1], p.move_ka_w[2], p.move_kb_w_per_mm_s[0], p.move_kb_w_per_mm_s[1],
+                  p.tare_w, p.coolant_w, spindle.c_str(), p.move_ka_w[0], p.move_ka_w[1],
+                  p.move_ka_w[2], p.move_kb_w_per_mm_s[0], p.move_kb_w_per_mm_s[1],
                   p.move_kb_w_per_mm_s[2], p.cut_ka_w[0], p.cut_ka_w[1], p.cut_ka_w[2],
                   p.cut_kb_w_per_mm3_s[0], p.cut_kb_w_per_mm3_s[1], p.cut_kb_w_per_mm3_s[2],
                   k.tool_change_w);
@@ -125,11 +143,11 @@ std::string describe_power_constants(const PowerConstants& k) {
   case PowerModel::Combined:
     std::snprintf(text, sizeof text,
                   "Combined (Pavanaskar Eq. 3.12 with Zhou's cutting term): tare %g W, "
-                  "coolant %g W, spindle %g W + %g W/rpm*n, "
+                  "coolant %g W, spindle %s, "
                   "move X/Y/Z KA %g/%g/%g W KB %g/%g/%g W/(mm/s), "
                   "cutting %g*n^%g*MRR kW (n rpm, MRR mm^3/s); tool change %g W",
-                  p.tare_w, p.coolant_w, p.spindle_ka_w, p.spindle_kb_w_per_rpm, p.move_ka_w[0],
-                  p.move_ka_w[1], p.move_ka_w[2], p.move_kb_w_per_mm_s[0], p.move_kb_w_per_mm_s[1],
+                  p.tare_w, p.coolant_w, spindle.c_str(), p.move_ka_w[0], p.move_ka_w[1],
+                  p.move_ka_w[2], p.move_kb_w_per_mm_s[0], p.move_kb_w_per_mm_s[1],
                   p.move_kb_w_per_mm_s[2], z.c3, z.c4, k.tool_change_w);
     break;
   }

@@ -16,6 +16,7 @@ constexpr std::array<PowerParameterInfo, kPowerParameterCount> kInfo{{
     {"pavanaskar.coolant_w", "W", C::Coolant},
     {"pavanaskar.spindle_ka_w", "W", C::Spindle},
     {"pavanaskar.spindle_kb_w_per_rpm", "W/rpm", C::Spindle},
+    {"pavanaskar.spindle_kc_w_per_rpm2", "W/rpm^2", C::Spindle},
     {"pavanaskar.x.move_ka_w", "W", C::AxisX},
     {"pavanaskar.y.move_ka_w", "W", C::AxisY},
     {"pavanaskar.z.move_ka_w", "W", C::AxisZ},
@@ -52,6 +53,8 @@ double* field(PowerConstants& k, PowerParameter p) {
     return &pv.spindle_ka_w;
   case P::SpindleKB:
     return &pv.spindle_kb_w_per_rpm;
+  case P::SpindleKC:
+    return &pv.spindle_kc_w_per_rpm2;
   case P::MoveKAX:
     return &pv.move_ka_w[0];
   case P::MoveKAY:

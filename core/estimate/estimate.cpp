@@ -405,8 +405,10 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   plan_options.max_samples_per_move = options.max_samples_per_move;
   plan_options.look_ahead_batch = options.look_ahead_batch;
   EstimateOptions folding = options;
-  for (const auto& [number, tool] : e.tools)
+  for (const auto& [number, tool] : e.tools) {
     folding.energy.flutes[number] = tool.flutes > 0 ? tool.flutes : typical_flutes(tool);
+    folding.energy.tool_diameters_mm[number] = tool.diameter_mm;
+  }
   std::vector<RemovalSimulator*> setup_removals;
   for (const auto& removal : removals)
     setup_removals.push_back(removal.get());

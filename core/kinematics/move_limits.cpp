@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace ncjoule::kinematics_detail {
@@ -173,6 +174,17 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
       programmed = kSlowestSpeed;
     }
     if (programmed > 0 && std::isfinite(programmed)) {
+      if (k.placeholder_rates && programmed > m.vmax_machine * (1 + 1e-9)) {
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "the program feeds at %.0f mm/min here (the first such block), above this "
+                      "profile's %.0f "
+                      "mm/min; its rates are placeholders (its source gives no kinematics), not "
+                      "the machine's: the time is counted at them and is no prediction; use a "
+                      "profile of the machine the program was made for",
+                      programmed * 60, m.vmax_machine * 60);
+        warnings.add_once("feed above placeholder rates", move.line, text);
+      }
       m.vmax = std::min(m.vmax, programmed);
     } else if (move.state.feed_mode != FeedMode::UnitsPerRevolution) {
       warnings.add("feed move without a feed rate", move.line,

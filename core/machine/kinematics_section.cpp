@@ -35,6 +35,7 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
                                           : JunctionRule::LinuxCnc29;
   k.path_tolerance_mm = t.quantity("path_tolerance", Dimension::Length, Range::NonNegative);
   k.exact_stop_every_block = t.boolean("exact_stop_every_block");
+  k.placeholder_rates = t.optional_boolean("placeholder_rates").value_or(false);
   k.tool_change_s = t.quantity("tool_change", Dimension::Time, Range::NonNegative);
   k.spindle_s_per_1000rpm = t.quantity("spindle_ramp", Dimension::RampTime, Range::NonNegative);
 

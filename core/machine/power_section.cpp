@@ -25,6 +25,8 @@ PavanaskarConstants read_pavanaskar(TableReader t, std::vector<std::string>& sou
   p.coolant_w = t.quantity("coolant", Dimension::Power, Range::NonNegative);
   p.spindle_ka_w = t.quantity("spindle_ka", Dimension::Power, Range::Any);
   p.spindle_kb_w_per_rpm = t.quantity("spindle_kb", Dimension::PowerPerRpm, Range::NonNegative);
+  p.spindle_kc_w_per_rpm2 =
+      t.optional_quantity("spindle_kc", Dimension::PowerPerRpm2, Range::NonNegative).value_or(0);
   std::tie(p.spindle_fitted_rpm_min, p.spindle_fitted_rpm_max) =
       optional_range(t, "spindle_fitted_rpm");
   constexpr std::array<const char*, 3> names{"x", "y", "z"};

@@ -135,6 +135,11 @@ bool TableReader::boolean(std::string_view key) {
   return b->get();
 }
 
+std::optional<bool> TableReader::optional_boolean(std::string_view key) {
+  if (!find(key)) return std::nullopt;
+  return boolean(key);
+}
+
 std::string TableReader::choice(std::string_view key,
                                 std::initializer_list<std::string_view> words) {
   std::string value = string(key);

@@ -33,6 +33,7 @@ public:
   std::string string(std::string_view key);
   std::optional<std::string> optional_string(std::string_view key);
   bool boolean(std::string_view key);
+  std::optional<bool> optional_boolean(std::string_view key);
   // One of the given words (case-sensitive); the error lists them.
   std::string choice(std::string_view key, std::initializer_list<std::string_view> words);
 

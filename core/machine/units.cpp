@@ -21,6 +21,7 @@ constexpr std::array kAngularSpeed{UnitSuffix{"deg_min", 1.0 / 60}, UnitSuffix{"
 constexpr std::array kAngularAccel{UnitSuffix{"deg_s2", 1.0}};
 constexpr std::array kPower{UnitSuffix{"w", 1.0}, UnitSuffix{"kw", 1000.0}};
 constexpr std::array kPowerPerRpm{UnitSuffix{"w_per_rpm", 1.0}, UnitSuffix{"kw_per_rpm", 1000.0}};
+constexpr std::array kPowerPerRpm2{UnitSuffix{"w_per_rpm2", 1.0}};
 // P = kb * F: a constant per mm/min is 60 times larger per mm/s.
 constexpr std::array kPowerPerSpeed{UnitSuffix{"w_per_mm_s", 1.0}, UnitSuffix{"w_per_mm_min", 60.0},
                                     UnitSuffix{"w_per_in_min", 60.0 / kInch}};
@@ -53,6 +54,8 @@ std::span<const UnitSuffix> units_of(Dimension dimension) {
     return kPower;
   case Dimension::PowerPerRpm:
     return kPowerPerRpm;
+  case Dimension::PowerPerRpm2:
+    return kPowerPerRpm2;
   case Dimension::PowerPerSpeed:
     return kPowerPerSpeed;
   case Dimension::PowerPerMrr:

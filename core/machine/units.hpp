@@ -25,6 +25,7 @@ enum class Dimension {
   AngularAccel,   // deg/s^2
   Power,          // W
   PowerPerRpm,    // W/rpm
+  PowerPerRpm2,   // W/rpm^2
   PowerPerSpeed,  // W/(mm/s)
   PowerPerMrr,    // W/(mm^3/s)
   KiloWatt,       // kW (Zhou's constants are kept as published)

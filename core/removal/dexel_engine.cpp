@@ -92,9 +92,11 @@ public:
   // The batch: steps binned by the tiles their footprints touch; every tile, in parallel,
   // applies its steps in order; a step's volume sums its tiles in tile order, as remove_step
   // does, so the result is the same bit for bit.
-  void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes) override {
+  void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes,
+                    std::vector<double>* cut_tops) override {
     const std::size_t n = steps.size();
     volumes.assign(n, 0.0);
+    if (cut_tops) cut_tops->assign(n, kNoMaterial);
     if (n == 0) return;
     std::vector<SweptStep> swept;
     std::vector<FootprintRange> ranges;
@@ -143,6 +145,7 @@ public:
     for (std::uint32_t tile : touched) {
       for (const TileStep& ts : tile_steps_[tile]) {
         length[ts.step] += ts.result.volume_mm3;
+        if (cut_tops) (*cut_tops)[ts.step] = std::max((*cut_tops)[ts.step], ts.result.cut_top_mm);
         stats_.columns_visited += ts.result.columns_visited;
         stats_.cells_tested += ts.result.cells_tested;
       }
@@ -168,6 +171,7 @@ private:
     ++acc.cells_tested;
     const double e = step.envelope_at(x, y);
     if (e >= top_[c]) return;
+    acc.cut_top_mm = std::max(acc.cut_top_mm, top_[c]);
     acc.volume_mm3 += clip_column(c, e);
   }
 

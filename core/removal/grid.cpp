@@ -1,6 +1,7 @@
 // The column grid shared by the engines, and the engine factory.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "engines.hpp"
 #include "ncjoule/removal.hpp"
@@ -22,8 +23,9 @@ GridFrame make_grid(const Box3& bounds, double spacing_mm) {
 }
 
 void RemovalEngine::remove_steps(const std::vector<RemovalStep>& steps,
-                                 std::vector<double>& volumes) {
+                                 std::vector<double>& volumes, std::vector<double>* cut_tops) {
   volumes.resize(steps.size());
+  if (cut_tops) cut_tops->assign(steps.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t k = 0; k < steps.size(); ++k)
     volumes[k] = remove_step(*steps[k].tool, steps[k].from, steps[k].to);
 }

@@ -322,7 +322,7 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     out[k].step_volume_mm3.resize(samples->size() - 1);
   }
   first[moves.size()] = steps_.size();
-  engine_->remove_steps(steps_, volumes_);
+  engine_->remove_steps(steps_, volumes_, &cut_tops_);
 
   for (std::size_t k = 0; k < moves.size(); ++k) {
     CommandRemoval& r = out[k];
@@ -330,8 +330,15 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     const CanonCommand& cmd = *moves[k].command;
     const TimedCommand& tc = *moves[k].timed;
     const std::vector<MotionSample>& samples = sampled[k].empty() ? tc.samples : sampled[k];
+    const bool depths = !std::isnan(cut_tops_[first[k]]);
+    if (depths) r.step_depth_mm.resize(r.step_volume_mm3.size());
     for (std::size_t s = 0; s < r.step_volume_mm3.size(); ++s) {
       const double v = volumes_[first[k] + s];
+      if (depths) {
+        const RemovalStep& step = steps_[first[k] + s];
+        const double depth = cut_tops_[first[k] + s] - std::min(step.from.z, step.to.z);
+        r.step_depth_mm[s] = v > 0 && depth > 0 ? float(depth) : 0.0f;
+      }
       r.step_volume_mm3[s] = v;
       r.removed_mm3 += v;
       const double dt = samples[s + 1].t_s - samples[s].t_s;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <tbb/blocked_range.h>
@@ -34,6 +35,8 @@ inline std::size_t tile_of(const GridFrame& grid, int i, int j) {
 
 struct TileResult {
   double volume_mm3 = 0;
+  // The highest top of material the step cut into (mm, the engine's Z), -inf where it cut none.
+  double cut_top_mm = -std::numeric_limits<double>::infinity();
   std::uint64_t columns_visited = 0;
   std::uint64_t cells_tested = 0;
 };
@@ -127,6 +130,7 @@ TileResult for_each_footprint_column(const GridFrame& grid, const SweptStep& ste
   TileResult total;
   auto add = [&total](const TileResult& r) {
     total.volume_mm3 += r.volume_mm3;
+    total.cut_top_mm = std::max(total.cut_top_mm, r.cut_top_mm);
     total.columns_visited += r.columns_visited;
     total.cells_tested += r.cells_tested;
   };

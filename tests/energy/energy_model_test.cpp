@@ -172,6 +172,35 @@ TEST_CASE("Pavanaskar's cut terms: each axis by its share of the path, only whil
   CHECK(rh.commands.back().components_j[idx(PowerComponent::Cutting)] ==
         doctest::Approx(0.5 * t * (p.cut_ka_w[0] + p.cut_kb_w_per_mm3_s[0] * 20.0)));
   CHECK(rh.commands.back().peak_power_w > rh.commands.back().mean_power_w);
+  // The cut states hold their axis (Table 4.1 measured them feeding): the X move line is drawn
+  // only over the half that cuts nothing.
+  const double move_x = p.move_ka_w[0] + p.move_kb_w_per_mm_s[0] * 10.0;
+  CHECK(rh.commands.back().components_j[idx(PowerComponent::AxisX)] ==
+        doctest::Approx(0.5 * t * move_x).epsilon(0.01));
+  CHECK(ce.components_j[idx(PowerComponent::AxisX)] == 0);
+  CHECK(ce.components_j[idx(PowerComponent::AxisY)] == 0);
+  // The combined model's cutting term is the cut alone: its move lines stay while cutting.
+  const auto kc = distinct_constants(PowerModel::Combined);
+  const auto rc = estimate_energy(half.commands, half.timeline, &half.removal, kc);
+  CHECK(
+      rc.commands.back().components_j[idx(PowerComponent::AxisX)] ==
+      doctest::Approx(t * (kc.pavanaskar.move_ka_w[0] + kc.pavanaskar.move_kb_w_per_mm_s[0] * 10.0))
+          .epsilon(0.01));
+}
+
+TEST_CASE("a spindle line that bends: KA + KB n + KC n^2") {
+  PowerConstants k = distinct_constants(PowerModel::Pavanaskar);
+  k.pavanaskar.spindle_ka_w = 91.67;
+  k.pavanaskar.spindle_kb_w_per_rpm = 0.1;
+  k.pavanaskar.spindle_kc_w_per_rpm2 = 2e-5;
+  OperatingPoint op;
+  op.spindle_on = 1;
+  op.spindle_rpm = 10000;
+  // 91.67 W + 0.1 W/rpm * 10,000 + 2e-5 W/rpm^2 * 10,000^2 = 91.67 + 1000 + 2000 W.
+  CHECK(component_power_w(k, op)[idx(PowerComponent::Spindle)] == doctest::Approx(3091.67));
+  CHECK(describe_power_constants(k).find("+ 2e-05 W/rpm^2*n^2") != std::string::npos);
+  k.pavanaskar.spindle_kc_w_per_rpm2 = 0;
+  CHECK(describe_power_constants(k).find("n^2") == std::string::npos);
 }
 
 TEST_CASE("tool change and spindle ramps") {

@@ -324,3 +324,18 @@ xy_home_in_work_mm = [-381.0, 203.2]
   check_names_file_and_key(refusal(generic + "[setup]\ncutter_compensation = \"both\"\n"),
                            "setup.cutter_compensation");
 }
+
+TEST_CASE("a spindle line that bends: KA + KB n + KC n^2, KC optional and not negative") {
+  MachineProfile m = parse_profile(
+      with_line("spindle_kb_w_per_rpm", "spindle_kb_w_per_rpm = 0.1\nspindle_kc_w_per_rpm2 = 2e-5"),
+      "kc.toml");
+  CHECK(m.power.pavanaskar.spindle_kc_w_per_rpm2 == doctest::Approx(2e-5));
+  // Without the key the line stays straight.
+  CHECK(load_profile(sample_path("generic-3axis.toml")).power.pavanaskar.spindle_kc_w_per_rpm2 ==
+        0);
+  CHECK_THROWS_WITH_AS(
+      parse_profile(with_line("spindle_kb_w_per_rpm", "spindle_kb_w_per_rpm = 0.1\n"
+                                                      "spindle_kc_w_per_rpm2 = -1e-5"),
+                    "kc.toml"),
+      doctest::Contains("spindle_kc_w_per_rpm2"), ProfileError);
+}

@@ -76,6 +76,9 @@ struct OperatingPoint {
   std::array<double, 3> axis_speed_mm_s{}; // |v_i|, the axis's part of the feed
   std::array<double, 3> cut_share{};       // |d_i| / sum |d_j| while cutting, else 0
   double mrr_mm3_s = 0;
+  // While cutting: the radial engagement a_e (mm), the step's volume over its depth of cut and
+  // its length across XY; 0 where removal does not say (the cut is then taken as a slot).
+  double radial_width_mm = 0;
   double tool_change = 0; // 1 while a tool change runs
   // The cutting term's factor for the chip thickness (Kienzle's k_c(h) / k_c), 1 where no
   // correction applies.
@@ -92,6 +95,7 @@ enum class PowerParameter : std::uint8_t {
   Coolant,
   SpindleKA,
   SpindleKB,
+  SpindleKC,
   MoveKAX,
   MoveKAY,
   MoveKAZ,
@@ -114,7 +118,7 @@ enum class PowerParameter : std::uint8_t {
   ZhouD4,
   ToolChange
 };
-inline constexpr std::size_t kPowerParameterCount = 25;
+inline constexpr std::size_t kPowerParameterCount = 26;
 
 struct PowerParameterInfo {
   // Dotted key under [power] in a machine profile, as core/machine reads it, e.g.
@@ -193,7 +197,15 @@ struct EnergyOptions {
   // Flutes of each tool (by the number moves carry), where known: with a material that has
   // Kienzle's constants, the chip thickness (feed per tooth) corrects the cutting term.
   std::map<int, int> flutes;
+  // Diameters of the tools (mm): with the radial engagement removal measured, the chip of a
+  // side cut is thinner than a slot's.
+  std::map<int, double> tool_diameters_mm;
 };
+
+// Mean chip thickness (mm) of a cut at `per_tooth_mm` feed per tooth with radial engagement
+// `radial_width_mm` of a `diameter_mm` cutter: (2 / pi) f_z for a slot, thinner for a side cut;
+// a slot's where the engagement or the diameter is not known.
+double mean_chip_thickness_mm(double per_tooth_mm, double radial_width_mm, double diameter_mm);
 
 struct CommandEnergy {
   std::size_t command = 0; // index into Timeline::commands

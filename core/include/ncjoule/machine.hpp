@@ -51,8 +51,11 @@ struct Kinematics {
   JunctionRule junction_rule = JunctionRule::Tolerance;
   double path_tolerance_mm = 0.01;     // junction deviation used under G64 without P
   bool exact_stop_every_block = false; // every block starts and ends at rest, whatever G64 says
-  double tool_change_s = 0;            // time of one M6
-  double spindle_s_per_1000rpm = 0;    // spindle ramp: seconds per 1000 rpm of speed change
+  // The rates are stand-ins, not the machine's (a profile built from a power fit whose source
+  // gives no kinematics): a program that asks for more feed than they allow is told so.
+  bool placeholder_rates = false;
+  double tool_change_s = 0;                 // time of one M6
+  double spindle_s_per_1000rpm = 0;         // spindle ramp: seconds per 1000 rpm of speed change
   ZDirection z_positive = ZDirection::Auto; // removal only: times do not depend on it
 };
 
@@ -62,6 +65,9 @@ struct PavanaskarConstants {
   double coolant_w = 0;
   double spindle_ka_w = 0;
   double spindle_kb_w_per_rpm = 0;
+  // Losses that grow with the square of speed (viscous bearing friction, windage, iron losses):
+  // the no-load line bends up over a spindle's whole range. 0: a straight line.
+  double spindle_kc_w_per_rpm2 = 0;
   std::array<double, 3> move_ka_w{}; // X, Y, Z
   std::array<double, 3> move_kb_w_per_mm_s{};
   std::array<double, 3> cut_ka_w{};

@@ -365,7 +365,11 @@ public:
   // Removes the steps in order; volumes[k] is step k's volume. The same result, bit for bit, as
   // remove_step on each in turn, for any number of threads. The dexel engine splits the batch
   // over tiles of its grid, each tile applying the steps that touch it in order, in parallel.
-  virtual void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes);
+  // With `cut_tops`, cut_tops[k] is the highest top of material step k cut into (mm, the
+  // steps' Z): with the tool's lowest point, the depth of the cut. NaN where an engine does not
+  // say; -inf where the step cut nothing.
+  virtual void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes,
+                            std::vector<double>* cut_tops = nullptr);
   virtual double material_volume_mm3() const = 0; // what is left
   // Whether there is material at the point (in the column under it, at its height).
   virtual bool material_at(const Point3& point) const = 0;
@@ -438,6 +442,9 @@ inline constexpr double kMaxStockWidthMm = 100'000;
 struct CommandRemoval {
   // Volume removed between sample i and i+1 of the command (size samples.size() - 1, or 0).
   std::vector<double> step_volume_mm3;
+  // Depth of cut of each step (mm): from the highest material it cut into down to the tool's
+  // lowest point; empty where the engine does not say (the voxel engine), 0 where it cut nothing.
+  std::vector<float> step_depth_mm;
   double removed_mm3 = 0;
   double mrr_mean_mm3_s = 0; // removed_mm3 / duration
   double mrr_peak_mm3_s = 0; // highest step volume / step time
@@ -507,6 +514,7 @@ private:
   bool warned_rotary_ = false;      // a move of A/B/C was said to make removal approximate
   std::vector<RemovalStep> steps_;  // scratch
   std::vector<double> volumes_;
+  std::vector<double> cut_tops_;
 };
 
 // Plays the timeline on the stock. Moves (Traverse, Feed, Arc, Probe) remove material step by

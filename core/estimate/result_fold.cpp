@@ -268,9 +268,16 @@ void ResultFolder::finish(double total_s) {
 
   // Lines of comments only are left out; lines with code are kept even when they take no time
   // (G90, G21), so that every block of the program has its entry.
+  // A line that issues no command (G17 G90) is read when the line before it has run: that is its
+  // start and end, so a column of start times stays in step with the program.
   std::size_t kept = 0;
+  double read_at = 0;
   for (std::size_t i = 0; i < lines_.size(); ++i) {
     LineSummary& b = lines_[i];
+    if (b.commands > 0)
+      read_at = b.end_s;
+    else
+      b.start_s = b.end_s = read_at;
     const bool acts = b.commands > 0 && kind_rank(b.kind) > 0;
     if (!acts && !line_comments(source_.line_text(i), dialect_).has_code) continue;
     b.line = std::int32_t(i);

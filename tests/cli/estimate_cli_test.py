@@ -37,6 +37,20 @@ for key in ["line", "kind", "time_s", "entry_speed_mm_s", "exit_speed_mm_s", "re
     check(all(key in b for b in blocks), f"every block has '{key}'")
 check(abs(sum(b["time_s"] for b in blocks) - doc["time_s"]) < 1e-6 * doc["time_s"],
       "block times add up to the program time")
+# Lines that issue no command (G90 G94 G17, G54) start when the line before them has run, so the
+# start times, read down the file, never go back (a straight program: no subprograms).
+starts = [b["start_s"] for b in blocks]
+check(all(a <= b + 1e-9 for a, b in zip(starts, starts[1:])) and starts[-1] > 0,
+      f"start_s never goes back down the file ({starts[:12]}...)")
+# A line that restates the modes in force issues no command at all: it is read when the line
+# before it has run.
+r = run("estimate", "-", "--machine", ZHOU, "--no-removal", "--json",
+        stdin="G21 G90 G17\nG0 X0 Y0 Z5\nG1 X10 F600\nG17 G90\nG1 X20\nM30\n")
+lines = {b["line"]: b for b in json.loads(r.stdout)["blocks"]}
+check(4 in lines and lines[4]["commands"] == 0 and
+      abs(lines[4]["start_s"] - (lines[3]["start_s"] + lines[3]["time_s"])) < 1e-9 and
+      lines[5]["start_s"] >= lines[4]["start_s"],
+      f"a line issuing no command starts when the line before it has run ({lines.get(4)})")
 check(abs(sum(b["energy_j"] for b in blocks) - doc["energy_j"]) < 1e-6 * doc["energy_j"],
       "block energies add up to the program energy")
 check(abs(sum(doc["components"].values()) - doc["energy_j"]) < 1e-6 * doc["energy_j"],
@@ -173,6 +187,15 @@ check(abs(w_generic - 2191.67) < 1 and "above the spindle's maximum of 10000 rpm
 r = run("estimate", "-", "-m", "haas-vf9", stdin=router_job)
 check(r.returncode != 0 and "haas-vf2" in r.stderr and "shipped profiles" in r.stderr,
       "an unknown profile name lists the shipped ones")
+
+# The Zhou/Anziani profile's rates are placeholders (1000 mm/min): a program feeding faster is
+# told that its time is no prediction; one within them is not.
+for feed, warned in ((3000, True), (600, False)):
+    r = run("estimate", "-", "--machine", ZHOU, "--no-removal", "--json",
+            stdin=f"G21 G90\nG0 X0 Y0 Z5\nG1 X100 F{feed}\nM30\n")
+    messages = [w["message"] for w in json.loads(r.stdout)["warnings"]]
+    said = any("placeholders" in m and "3000 mm/min" in m for m in messages)
+    check(said == warned, f"F{feed} on the Zhou profile: placeholder rates said: {said} ({messages})")
 
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

@@ -44,6 +44,10 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   if (v.has('r')) cycle_r_ = *v['r'], have_cycle_r_ = true;
   if (v.has(ax.c_letter)) cycle_z_ = *v[ax.c_letter], have_cycle_z_ = true;
   if (v.has('q')) cycle_q_ = *v['q'];
+  // A Q on a tapping block makes it peck tapping for the rest of the series; a Q left over from
+  // a drilling cycle does not.
+  const bool tapping = cycle == Motion::G84 || cycle == Motion::G74;
+  if (tapping && v.has('q')) tap_peck_ = *v['q'];
   if (v.has('p')) cycle_p_ = *v['p'];
   if (!have_cycle_r_) {
     // Some posts drop R (FreeCAD's comparams writes only X Y Z I J F). rs274 refuses such a
@@ -218,22 +222,42 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       // bottom, reverse the spindle, feed back out to R, restore the spindle's direction.
       // With M29 (rigid tapping) the feed follows the spindle: the same moves at F = pitch x S.
       // Under G98 a rapid then takes the tool to the initial level.
+      // With Q (peck tapping: Fanuc with parameter PCP = 1, Haas, Hurco): each peck taps Q
+      // deeper from where the last ended, reverses and backs out to R, and taps back in along
+      // the thread; the moves in and out of the tapped part run at the tapping feed.
       const char* how = rigid_tapping_ ? "rigid tap" : "tap";
-      straight(CanonKind::Feed, at(a, b, bottom), how);
-      if (dwell > 0) emit_simple(CanonKind::Dwell, dwell);
       const SpindleDir dir =
           state_.spindle != SpindleDir::Off
               ? state_.spindle
               : (cycle == Motion::G84 ? SpindleDir::Clockwise : SpindleDir::CounterClockwise);
       const SpindleDir reversed =
           dir == SpindleDir::Clockwise ? SpindleDir::CounterClockwise : SpindleDir::Clockwise;
-      state_.spindle = reversed;
-      emit_simple(reversed == SpindleDir::Clockwise ? CanonKind::SpindleClockwise
-                                                    : CanonKind::SpindleCounterClockwise);
-      straight(CanonKind::Feed, at(a, b, r), std::string(how) + " retract");
-      state_.spindle = dir;
-      emit_simple(dir == SpindleDir::Clockwise ? CanonKind::SpindleClockwise
+      auto turn = [&](SpindleDir d) {
+        state_.spindle = d;
+        emit_simple(d == SpindleDir::Clockwise ? CanonKind::SpindleClockwise
                                                : CanonKind::SpindleCounterClockwise);
+      };
+      const double peck = tap_peck_ * u;
+      const std::size_t cap = options_.max_cycle_repeats ? options_.max_cycle_repeats : 2e9;
+      if (peck > 0 && (!((r - bottom) / peck <= double(cap)) || r - peck == r)) {
+        error(v.column['q' - 'a'], "Q" + number_text(tap_peck_) +
+                                       " from R to the bottom makes more than " +
+                                       std::to_string(cap) + " pecks: the cycle is refused");
+        return;
+      }
+      for (double depth = peck > 0 ? r - peck : bottom; depth > bottom && !finished_;
+           depth -= peck) {
+        straight(CanonKind::Feed, at(a, b, depth), std::string(how) + " peck");
+        turn(reversed);
+        straight(CanonKind::Feed, at(a, b, r), std::string(how) + " peck retract");
+        turn(dir);
+        straight(CanonKind::Feed, at(a, b, depth), std::string(how) + " peck return");
+      }
+      straight(CanonKind::Feed, at(a, b, bottom), how);
+      if (dwell > 0) emit_simple(CanonKind::Dwell, dwell);
+      turn(reversed);
+      straight(CanonKind::Feed, at(a, b, r), std::string(how) + " retract");
+      turn(dir);
       if (clear > r) traverse(a, b, clear);
       break;
     }

@@ -16,7 +16,7 @@ void Interpreter::set_motion_mode(const BlockValues& v) {
     // A series of cycles ends with any motion code that is not a cycle (G80 included); one
     // cycle code after another (G81 then G82) goes on with the same series.
     const bool cycle = code == 730 || code == 740 || (code >= 810 && code <= 890);
-    if (!cycle) have_cycle_initial_height_ = false;
+    if (!cycle) have_cycle_initial_height_ = false, tap_peck_ = 0;
     const bool plain = motion_ == Motion::Rapid || motion_ == Motion::Linear ||
                        motion_ == Motion::ArcCW || motion_ == Motion::ArcCCW;
     if ((cycle || code == 800) && plain) motion_before_cycle_ = motion_;

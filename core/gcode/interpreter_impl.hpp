@@ -324,6 +324,7 @@ private:
   Pose frame_shift_;
   double frame_rotation_deg_ = 0;
   bool rigid_tapping_ = false; // M29 given (Fanuc, Haas): G84/G74 are synchronised
+  double tap_peck_ = 0;        // Q of the current series of G84/G74 (program units), 0: none
   int current_line_ = 0;
   int current_call_line_ = 0;
   std::size_t command_count_ = 0;

@@ -79,6 +79,38 @@ TEST_CASE("Fanuc G84 taps: feed in, spindle reverses, feed out: G74 is left-hand
   CHECK(with_severity(l, Severity::Warning).empty());
 }
 
+TEST_CASE("G84 with Q pecks: Q deeper each time, out to R and back along the thread") {
+  // Haas Mill Operator's Manual, "G84 Tapping Canned Cycle" (Q: peck depth); Fanuc "Peck rigid
+  // tapping cycle" with parameter PCP = 1 (retract to R between pecks). 10 mm deep from R2 in
+  // Q4 pecks: to -2, -6, then the bottom at -10; each peck backs out to R at the tapping feed
+  // with the spindle reversed.
+  const Toolpath p = run("G21 G90 G0 Z20\nS500 M3\nM29 S500\n"
+                         "G98 G84 X10 Y5 Z-10 R2 Q4 F625\nX20\nG80\n"
+                         "G84 X30 Y5 Z-10 R2 F625\nG80\nM30\n",
+                         "haas");
+  CHECK(errors(p) == 0);
+  std::vector<CanonCommand> feeds;
+  for (const CanonCommand& c : feeds_and_rapids(p))
+    if (c.kind == CanonKind::Feed) feeds.push_back(c);
+  // Per hole: (in, out, back) for the pecks at -2 and -6, then in to -10 and out: 8 feeds.
+  REQUIRE(feeds.size() == 8 + 8 + 2);
+  const double ends[8] = {-2, 2, -2, -6, 2, -6, -10, 2};
+  for (int k = 0; k < 8; ++k) {
+    CAPTURE(k);
+    CHECK(feeds[k].end.z == doctest::Approx(ends[k]));
+    CHECK(feeds[k].state.feed == doctest::Approx(625));
+    const bool out = ends[k] == 2;
+    CHECK(feeds[k].state.spindle == (out ? SpindleDir::CounterClockwise : SpindleDir::Clockwise));
+  }
+  CHECK(feeds[1].text == "rigid tap peck retract");
+  CHECK(feeds[8].end.x == doctest::Approx(20)); // the second hole of the series pecks too
+  CHECK(feeds[9].end.z == doctest::Approx(2));
+  // After G80 a new series without Q taps in one go.
+  CHECK(feeds[16].end.z == doctest::Approx(-10));
+  CHECK(feeds[16].end.x == doctest::Approx(30));
+  CHECK(feeds[17].end.z == doctest::Approx(2));
+}
+
 TEST_CASE("Fanuc M98 P/L forms and O-number headers, M99 returns") {
   // Fanuc Operator's Manual, "Subprogram": M98 P<program> L<repeats>, or P<repeats:4 digits
   // ...><program:4 digits>; M99 returns to the block after the call.

@@ -56,70 +56,102 @@ bool is_code(std::string_view text) {
 
 // Notes posts write between operations, which name none.
 bool is_note(const std::string& l) {
-  static const char* const kNotes[] = {"finish operation",
-                                       "end operation",
-                                       "end of operation",
-                                       "machine units",
-                                       "coolant",
-                                       "begin preamble",
-                                       "begin postamble",
-                                       "preamble",
-                                       "postamble",
-                                       "output time",
-                                       "exported by",
-                                       "post processor",
-                                       "tool change",
-                                       "program end",
-                                       "end of program",
-                                       "end program",
-                                       "retract",
-                                       "rapid",
-                                       "spindle",
-                                       "return to",
-                                       "safe",
-                                       "home",
-                                       "stop",
-                                       "pause",
-                                       "units",
-                                       "wcs",
-                                       "work offset",
-                                       "date",
-                                       "time:",
-                                       "material",
-                                       "machine:",
-                                       "stock",
-                                       "cam file",
-                                       "project file",
-                                       "file:"};
+  static const char* const kNotes[] = {
+      "finish operation", "end operation", "end of operation", "machine units", "coolant",
+      "begin preamble", "begin postamble", "preamble", "postamble", "output time", "exported by",
+      "post processor", "tool change", "program end", "end of program", "end program", "retract",
+      "rapid", "spindle", "return to", "safe", "home", "stop", "pause", "units", "wcs",
+      "work offset", "date", "time:", "material", "machine:", "stock", "cam file", "project file",
+      "file:",
+      // Fanuc posts between operations, machine resets.
+      "end of previous operation", "intermediate cleanup", "reset offsets", "cancel",
+      // Fusion's personal-use notice, line by line.
+      "when using fusion", "moves is reduced", "which can increase", "are available with",
+      "rapid moves is reduced", "moves, which can", "moves are available", "using high feed",
+      // Licences, debug output and custom-code markers.
+      "without warranties", "licensed under", "copyright", "movement_", "pycam_",
+      "start custom gcode", "end custom gcode", "curr:", "part zero",
+      // FreeCAD's block mode and toolchange markers, section markers.
+      "block-expand", "block-enable", "path:", "begin toolchange", "post_amble", "pre_amble",
+      "section end"};
   for (const char* note : kNotes)
     if (starts_with(l, note)) return true;
   return false;
 }
 
+// Marks posts draw lines and frames with.
+bool is_rule_mark(char c) {
+  return c == '-' || c == '=' || c == '*' || c == '_' || c == '#' || c == '~' || c == '+' ||
+         c == ' ';
+}
+
+// "OP 2", "OPERATION 3", "SEQ 10": a number, not what the operation does.
+bool is_bare_number(const std::string& l) {
+  for (std::string_view word : {"operation", "op.", "op", "sequence", "seq"}) {
+    if (!starts_with(l, word)) continue;
+    std::size_t i = word.size();
+    while (i < l.size() && (l[i] == ' ' || l[i] == '#' || l[i] == '.' || l[i] == ':'))
+      ++i;
+    const std::size_t digits = i;
+    while (i < l.size() && std::isdigit(static_cast<unsigned char>(l[i])))
+      ++i;
+    if (i > digits && i == l.size()) return true;
+  }
+  return false;
+}
+
 } // namespace
+
+std::optional<std::string_view> comment_of_line(std::string_view line, const Dialect& dialect) {
+  const LineComments c = line_comments(line, dialect);
+  if (c.comments.empty()) return std::nullopt;
+  if (c.has_code) {
+    // A block number is no code here: "N10 (Face1)" is how many posts name an operation.
+    if (c.comments.size() != 1) return std::nullopt;
+    const std::size_t open = std::size_t(std::max(0, c.comments.front().column - 1));
+    const std::string_view before = trim(line.substr(0, open));
+    const bool block_number =
+        before.size() > 1 && (before[0] == 'N' || before[0] == 'n') &&
+        before.substr(1).find_first_not_of("0123456789") == std::string_view::npos;
+    const std::size_t close = line[open] == '(' ? line.find(')', open) : line.size();
+    if (!block_number || close == std::string_view::npos ||
+        !trim(line.substr(std::min(close + 1, line.size()))).empty())
+      return std::nullopt;
+  }
+  return c.comments.front().text;
+}
 
 std::string operation_name_in(std::string_view comment) {
   std::string_view text = trim(comment);
+  // Rules and frames around a name ("--- FACE TOP ---", "*** DRILL ***"), and comments that are
+  // nothing else ("----------------------").
+  while (!text.empty() && is_rule_mark(text.front()))
+    text.remove_prefix(1);
+  while (!text.empty() && is_rule_mark(text.back()))
+    text.remove_suffix(1);
   if (text.empty() || text.size() > 80) return {};
   std::string l = to_lower(text);
-  for (const char* prefix :
-       {"begin operation:", "begin operation", "start operation:", "operation:", "op:"}) {
+  for (const char* prefix : {"begin operation:", "begin operation",
+                             "start operation:", "operation:", "op:", "block-name:"}) {
     if (starts_with(l, prefix)) {
       text = trim(text.substr(std::string_view(prefix).size()));
       l = to_lower(text);
       break;
     }
   }
-  if (text.empty() || describes_tool(l) || is_code(text) || is_note(l)) return {};
+  const bool digits_only =
+      l.find_first_not_of("0123456789. ") == std::string::npos; // "14": a counter, no name
+  if (text.empty() || digits_only || describes_tool(l) || is_code(text) || is_note(l) ||
+      is_bare_number(l))
+    return {};
   return std::string(text);
 }
 
 OperationTracker::OperationTracker(const SourceFile& source, const Dialect& dialect)
     : source_(source), dialect_(dialect) {
   for (std::size_t i = 0; i < source.lines.size(); ++i) {
-    const LineComments c = line_comments(source.line_text(i), dialect);
-    if (c.has_code || c.comments.empty()) continue;
-    if (!operation_name_in(c.comments.front().text).empty()) comment_lines_.push_back(int(i));
+    const auto text = comment_of_line(source.line_text(i), dialect);
+    if (text && !operation_name_in(*text).empty()) comment_lines_.push_back(int(i));
   }
   Op lead;
   lead.summary.line = -1;
@@ -180,9 +212,7 @@ void OperationTracker::add(std::size_t op, CanonKind kind, double duration_s, do
 
 std::string OperationTracker::name_of(const Op& op, const std::function<bool(int)>& stops) const {
   auto comment_at = [&](int line) -> std::optional<std::string_view> {
-    const LineComments c = line_comments(source_.line_text(std::size_t(line)), dialect_);
-    if (c.has_code || c.comments.empty()) return std::nullopt;
-    return c.comments.front().text;
+    return comment_of_line(source_.line_text(std::size_t(line)), dialect_);
   };
   if (op.comment_line >= 0)
     if (auto text = comment_at(op.comment_line)) return operation_name_in(*text);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ namespace ncjoule::estimate_detail {
 // list entry ("T1 D=6. CR=0. - ..."), commented-out code ("G00 Z3"), or one of the notes posts
 // write between operations ("Finish operation: ...", "Coolant on", "Machine units: mm").
 std::string operation_name_in(std::string_view comment);
+// The comment of a line that holds nothing else but a block number ("(Face1)", "N10 (Face1)").
+std::optional<std::string_view> comment_of_line(std::string_view line, const Dialect& dialect);
 
 class OperationTracker {
 public:

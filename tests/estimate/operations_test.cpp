@@ -5,8 +5,10 @@
 
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
+#include "operations.hpp"
 
 using namespace ncjoule;
+using ncjoule::estimate_detail::operation_name_in;
 
 namespace {
 
@@ -61,6 +63,50 @@ TEST_CASE("an operation per tool change, named by the comment above it") {
   // Every block knows its operation (CSV, JSON).
   for (const LineSummary& b : e.lines)
     if (b.line >= 8 && b.line <= 9) CHECK(b.operation == 2);
+}
+
+TEST_CASE("boilerplate, rules, resets and bare operation numbers are no names") {
+  // The shapes real posts write around an operation: Fusion's personal-use notice, a Fanuc
+  // post's cleanup banner, SolidWorks CAM's rules, a reset comment and "OP 2" next to the
+  // operation's own description.
+  const Estimate e = run("%\nO1001 (PART)\n"
+                         "(When using Fusion for Personal Use, the feedrate of rapid)\n"
+                         "(moves is reduced to match the feedrate of cutting moves,)\n"
+                         "(which can increase machining time. Unrestricted rapid moves)\n"
+                         "(are available with a Fusion Subscription.)\n"
+                         "G21 G90\n"
+                         "(FACE BOTTOM)\n"
+                         "(----------------------)\n"
+                         "T1 M6\n"
+                         "S1000 M3\n"
+                         "G0 X0 Y0 Z5\n"
+                         "G1 Z-1 F100\n"
+                         "G1 X10\n"
+                         "(--- END OF PREVIOUS OPERATION INTERMEDIATE CLEANUP ---)\n"
+                         "M5\n"
+                         "(*** DRILL .25 HOLES ***)\n"
+                         "(OP 2)\n"
+                         "(RESET OFFSETS)\n"
+                         "T2 M6\n"
+                         "G1 X20\n"
+                         "M30\n%\n");
+  CHECK(names(e) == std::vector<std::string>{"FACE BOTTOM", "DRILL .25 HOLES"});
+  CHECK(operation_name_in("Op. 3").empty());
+  CHECK(operation_name_in("OPERATION #12").empty());
+  CHECK(operation_name_in("OP 2 ROUGH POCKET") == "OP 2 ROUGH POCKET");
+  CHECK(operation_name_in("== Contour1 ==") == "Contour1");
+}
+
+TEST_CASE("a name on a line with only a block number: N10 (Face1)") {
+  // Fusion's Tormach and Haas posts number every block, the operation's comment too.
+  const Estimate e = run("N5 G21 G90\nN10 (Face1)\nN15 T1 M6\nN20 S1000 M3\nN25 G1 X5 F100\n"
+                         "N30 (Drill1)\nN35 T2 M6\nN40 G1 X10\nN45 G1 X12 (not a name: code)\n"
+                         "M30\n");
+  CHECK(names(e) == std::vector<std::string>{"Face1", "Drill1"});
+  // FreeCAD's block mode: the markers around each operation are no names.
+  CHECK(operation_name_in("Block-expand: 0").empty());
+  CHECK(operation_name_in("Path: 3mm Endmill003").empty());
+  CHECK(operation_name_in("14").empty());
 }
 
 TEST_CASE("two operations with one tool split at the post's operation comment") {

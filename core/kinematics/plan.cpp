@@ -87,6 +87,7 @@ struct Planner::Impl {
   void look_ahead(bool at_end);
   bool ready(const WaitingCommand& w) const;
   void time(WaitingCommand& w);
+  void settle(const CanonCommand& c, TimedCommand& out) const;
   void send_ready();
 
   const Kinematics& k;
@@ -325,7 +326,16 @@ void Planner::Impl::time(WaitingCommand& w) {
     break;
   }
   }
+  settle(c, out);
   clock += out.duration_s;
+}
+
+// A control that checks position at every stop waits there before the next block.
+void Planner::Impl::settle(const CanonCommand& c, TimedCommand& out) const {
+  if (!(k.settle_s > 0) || !is_move(c.kind) || !(out.duration_s > 0) || out.exit_speed_mm_s > 0)
+    return;
+  out.duration_s += k.settle_s;
+  out.samples.push_back(MotionSample{clock + out.duration_s, 1.0, c.end, 0.0});
 }
 
 double Planner::Impl::finish() {

@@ -37,6 +37,7 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   k.exact_stop_every_block = t.boolean("exact_stop_every_block");
   k.placeholder_rates = t.optional_boolean("placeholder_rates").value_or(false);
   k.tool_change_s = t.quantity("tool_change", Dimension::Time, Range::NonNegative);
+  k.settle_s = t.optional_quantity("settle", Dimension::Time, Range::NonNegative).value_or(0.0);
   k.spindle_s_per_1000rpm = t.quantity("spindle_ramp", Dimension::RampTime, Range::NonNegative);
 
   if (const auto z = t.optional_string("z_positive")) {

@@ -113,6 +113,28 @@ TEST_CASE("exact stop on every block when the profile says so") {
   CHECK(t.commands[0].exit_speed_mm_s == 0);
 }
 
+TEST_CASE("settle_s: every move that ends at rest waits for the in-position check") {
+  // Two collinear feeds blend (no stop between them), then a rapid: the stops are at the end of
+  // the second feed (the rapid turns back) and of the rapid: 2 x 0.1 s more than without.
+  const std::vector<CanonCommand> program{feed(at(0, 0), at(50, 0), 762),
+                                          feed(at(50, 0), at(100, 0), 762),
+                                          rapid(at(100, 0), at(0, 0))};
+  MachineProfile m = round_machine();
+  const Timeline without = plan(program, m);
+  m.kinematics.settle_s = 0.1;
+  const Timeline with = plan(program, m);
+  REQUIRE(without.commands[0].exit_speed_mm_s > 0);
+  CHECK(with.commands[0].duration_s == doctest::Approx(without.commands[0].duration_s));
+  CHECK(with.commands[1].duration_s == doctest::Approx(without.commands[1].duration_s + 0.1));
+  CHECK(with.commands[2].duration_s == doctest::Approx(without.commands[2].duration_s + 0.1));
+  CHECK(with.total_s == doctest::Approx(without.total_s + 0.2));
+  // The next command starts after the wait; the move's last sample is at its end, at rest.
+  CHECK(with.commands[2].start_s ==
+        doctest::Approx(with.commands[1].start_s + with.commands[1].duration_s));
+  CHECK(with.commands[1].samples.back().t_s ==
+        doctest::Approx(with.commands[1].start_s + with.commands[1].duration_s));
+}
+
 TEST_CASE("backward pass: never faster than the machine can stop within the blocks ahead") {
   // A long fast block, then short collinear blocks, then the end of the path.
   std::vector<CanonCommand> program{feed(at(0, 0), at(200, 0), 6000)};

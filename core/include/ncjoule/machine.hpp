@@ -54,7 +54,11 @@ struct Kinematics {
   // The rates are stand-ins, not the machine's (a profile built from a power fit whose source
   // gives no kinematics): a program that asks for more feed than they allow is told so.
   bool placeholder_rates = false;
-  double tool_change_s = 0;                 // time of one M6
+  double tool_change_s = 0; // time of one M6
+  // The in-position check of a control that settles after every stop (Hurco, Haas and Fanuc
+  // without their look-ahead modes): added to every move that ends at rest. 0 (LinuxCNC's
+  // planner, which does not wait) by default.
+  double settle_s = 0;
   double spindle_s_per_1000rpm = 0;         // spindle ramp: seconds per 1000 rpm of speed change
   ZDirection z_positive = ZDirection::Auto; // removal only: times do not depend on it
 };

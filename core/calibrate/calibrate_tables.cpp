@@ -41,10 +41,14 @@ FitReport fit_line(PP ka, PP kb, const std::vector<std::pair<double, double>>& x
   return fit::solve(problem, what);
 }
 
+// The spindle's no-load power as the model draws it (one home for the formula).
 double spindle_power(const PowerConstants& k, double rpm) {
-  const PavanaskarConstants& p = k.pavanaskar;
-  return rpm > 0 ? p.spindle_ka_w + (p.spindle_kb_w_per_rpm + p.spindle_kc_w_per_rpm2 * rpm) * rpm
-                 : 0.0;
+  PowerConstants pavanaskar = k;
+  pavanaskar.model = PowerModel::Pavanaskar;
+  OperatingPoint op;
+  op.spindle_on = rpm > 0 ? 1.0 : 0.0;
+  op.spindle_rpm = rpm;
+  return component_power_w(pavanaskar, op)[static_cast<std::size_t>(PowerComponent::Spindle)];
 }
 
 // For a model linear in all parameters but a power law's exponent: the exponent on a grid, the
@@ -99,7 +103,10 @@ FitReport fit_spindle(const std::vector<SteadyStateReading>& readings, double ba
   std::vector<std::pair<double, double>> xy;
   for (const auto& r : readings)
     xy.emplace_back(r.rpm, r.power_w - baseline_w);
-  return fit_line(PP::SpindleKA, PP::SpindleKB, xy, "spindle");
+  FitReport fit = fit_line(PP::SpindleKA, PP::SpindleKB, xy, "spindle");
+  // A table's straight line replaces the base profile's spindle curve whole: its n^2 term too.
+  fit.constants.push_back({PP::SpindleKC, 0.0, 0.0, false});
+  return fit;
 }
 
 FitReport fit_axis_move(const std::vector<SteadyStateReading>& readings, Axis axis,

@@ -38,12 +38,6 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
                    removed_mm3);
 }
 
-// Kienzle: the cutting force per chip area falls as the chip thickens. With the tool's flutes
-// known (given, or EnergyOptions' typical number for its kind), the chip thickness is the mean
-// over a full-width cut's engagement, h_m = (2 / pi) * f_z (Sandvik's and Tschaetsch's mean chip
-// thickness of a slot; a narrower side cut has thinner chips and so a higher k_c, by up to 10-15%
-// at a sixth of the diameter: the radial engagement is not measured yet). The cutting term is
-// scaled by k_c(h_m) / k_c.
 // The mean chip of a cut of radial engagement a_e with a cutter of diameter D (Sandvik's
 // milling formula, 90 deg entering angle): h_m = f_z * (2 a_e / D) / arccos(1 - 2 a_e / D),
 // (2 / pi) f_z for a slot, thinner for a side cut. An engagement not known is taken as a slot.
@@ -55,6 +49,10 @@ double mean_chip_thickness_mm(double per_tooth_mm, double radial_width_mm, doubl
   return per_tooth_mm * 2 * ratio / std::acos(1 - 2 * ratio);
 }
 
+// Kienzle: the cutting force per chip area falls as the chip thickens. With the tool's flutes
+// known (given, or EnergyOptions' typical number for its kind), the chip thickness at each point
+// is the mean over the cut's engagement (mean_chip_thickness_mm, with the radial width removal
+// measured), and the cutting term is scaled by k_c(h_m) / k_c.
 void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
                                                   OperatingSegment* first,
                                                   OperatingSegment* last) const {

@@ -80,7 +80,8 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
     const double dt = s[k + 1].t_s - s[k].t_s;
     if (!(dt > 0)) continue;
     auto d = displacement(s[k].position, s[k + 1].position);
-    if (norm(d) <= kStillMm) d = whole; // direction of a step too short to have its own
+    const double across = std::hypot(d[0], d[1]); // the step's own travel, before any stand-in
+    if (norm(d) <= kStillMm) d = whole;           // direction of a step too short to have its own
     double volume = 0;
     if (removal && k < removal->step_volume_mm3.size()) volume = removal->step_volume_mm3[k];
     const double mrr = std::max(0.0, volume) / dt;
@@ -89,7 +90,7 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
     set_motion(b, d, s[k + 1].speed_mm_s, mrr);
     if (removal && k < removal->step_depth_mm.size())
       a.radial_width_mm = b.radial_width_mm =
-          radial_width(volume, removal->step_depth_mm[k], std::hypot(d[0], d[1]));
+          radial_width(volume, removal->step_depth_mm[k], across);
     out.push_back({index, s[k].t_s, s[k + 1].t_s, a, b});
   }
 }

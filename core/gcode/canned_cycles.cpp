@@ -113,6 +113,16 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
     return p;
   };
   auto traverse = [&](double a, double b, double c) { straight(CanonKind::Traverse, at(a, b, c)); };
+  // A peck that is no step at R's height (Q4 at R1e117), or more pecks than a cycle may repeat,
+  // would never end: refused before it runs. `step` in mm, `q_word` as the program wrote it.
+  auto runaway_pecks = [&](double step, double q_word) {
+    const std::size_t cap = options_.max_cycle_repeats ? options_.max_cycle_repeats : 2e9;
+    if ((r - bottom) / step <= double(cap) && r - step != r) return false;
+    error(v.column['q' - 'a'], "Q" + number_text(q_word) +
+                                   " from R to the bottom makes more than " + std::to_string(cap) +
+                                   " pecks: the cycle is refused");
+    return true;
+  };
   auto feed = [&](double a, double b, double c) { straight(CanonKind::Feed, at(a, b, c)); };
 
   double a = pos_.*ax.a, b = pos_.*ax.b;
@@ -172,16 +182,8 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       break;
     case Motion::G83:
     case Motion::G73: {
-      // G83 retracts to R after every peck; G73 only backs off to break the chip. A peck that
-      // is no step at that height (Q4 at R1e117) or more pecks than a cycle may repeat would
-      // never end: refused before it runs.
-      const double pecks = (r - bottom) / q;
-      const std::size_t cap = options_.max_cycle_repeats ? options_.max_cycle_repeats : 2e9;
-      if (!(pecks <= double(cap)) || r - q == r) {
-        error(v.column['q' - 'a'], "Q" + number_text(q) + " from R to the bottom makes more than " +
-                                       std::to_string(cap) + " pecks: the cycle is refused");
-        return;
-      }
+      // G83 retracts to R after every peck; G73 only backs off to break the chip.
+      if (runaway_pecks(q, q)) return;
       double depth = r - q;
       for (; depth > bottom && !finished_; depth -= q) {
         feed(a, b, depth);
@@ -238,13 +240,7 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
                                                : CanonKind::SpindleCounterClockwise);
       };
       const double peck = tap_peck_ * u;
-      const std::size_t cap = options_.max_cycle_repeats ? options_.max_cycle_repeats : 2e9;
-      if (peck > 0 && (!((r - bottom) / peck <= double(cap)) || r - peck == r)) {
-        error(v.column['q' - 'a'], "Q" + number_text(tap_peck_) +
-                                       " from R to the bottom makes more than " +
-                                       std::to_string(cap) + " pecks: the cycle is refused");
-        return;
-      }
+      if (peck > 0 && runaway_pecks(peck, tap_peck_)) return;
       for (double depth = peck > 0 ? r - peck : bottom; depth > bottom && !finished_;
            depth -= peck) {
         straight(CanonKind::Feed, at(a, b, depth), std::string(how) + " peck");

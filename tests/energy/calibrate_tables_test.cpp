@@ -48,6 +48,12 @@ TEST_CASE("spindle, axis-motion and cutting lines are recovered from noisy readi
   CHECK(s.rmse == doctest::Approx(6.0).epsilon(0.5));
   check_recovered(s, PowerParameter::SpindleKA, 120);
   check_recovered(s, PowerParameter::SpindleKB, 0.18);
+  // The table's straight line replaces a base profile's curve whole, its n^2 term included.
+  PowerConstants bent = known;
+  bent.pavanaskar.spindle_kc_w_per_rpm2 = 2e-5;
+  apply_fit(bent, s);
+  CHECK(bent.pavanaskar.spindle_kc_w_per_rpm2 == 0);
+  CHECK(bent.pavanaskar.spindle_kb_w_per_rpm == doctest::Approx(0.18).epsilon(0.05));
 
   std::vector<SteadyStateReading> axis_y;
   for (double f = 5; f <= 150; f += 10)

@@ -227,12 +227,23 @@ void ResultFolder::finish(double total_s) {
   }
   out_.energy.diagnostics.clear();
   if (overloaded_ > 0) {
-    char text[320];
+    // With a stock guessed from the cuts, the likelier reading is the guess: a program that
+    // rest-machines what earlier operations or programs left cuts less than the full box.
+    const bool guessed =
+        std::any_of(removals_.begin(), removals_.end(), [](const RemovalSimulator* r) {
+          return r->ready() && r->summary().stock_source == StockSource::Guessed;
+        });
+    char text[480];
     std::snprintf(text, sizeof text,
                   "%zu block(s) ask the spindle for more than its rated power, the first at line "
-                  "%d, up to %.0f%% of the rating at line %d: the cut would stall, or the CAM "
-                  "feeds and speeds are wrong",
-                  overloaded_, first_overloaded_line_ + 1, 100 * worst_load_, worst_load_line_ + 1);
+                  "%d, up to %.0f%% of the rating at line %d: %s",
+                  overloaded_, first_overloaded_line_ + 1, 100 * worst_load_, worst_load_line_ + 1,
+                  guessed ? "the stock is guessed as the full box of the cuts; where earlier "
+                            "operations or programs already cleared material (rest machining), "
+                            "the real cut is lighter: give the stock. With the real stock, a "
+                            "cut still over the rating would stall, or the CAM feeds and speeds "
+                            "are wrong"
+                          : "the cut would stall, or the CAM feeds and speeds are wrong");
     out_.diagnostics.push_back(
         {Severity::Warning, source_.path, first_overloaded_line_ + 1, 0, text});
   }

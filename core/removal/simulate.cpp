@@ -345,6 +345,19 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
       if (dt > 0) r.mrr_peak_mm3_s = std::max(r.mrr_peak_mm3_s, v / dt);
     }
     if (tc.duration_s > 0) r.mrr_mean_mm3_s = r.removed_mm3 / tc.duration_s;
+    if (cmd.kind == CanonKind::Traverse && r.removed_mm3 > kCollisionMinMm3 &&
+        totals_.stock_source == StockSource::Guessed) {
+      // A CAM rapids through air only: a guessed box that a rapid enters is larger there than
+      // the real stock (an adaptive's entry outside the part falls inside the box the tool's
+      // radius widened). What the rapid passes through is taken as air, not as a cut.
+      ++air_rapids_;
+      air_rapid_mm3_ += r.removed_mm3;
+      if (air_rapid_lines_.size() < 5) air_rapid_lines_.push_back(tc.line + 1);
+      std::fill(r.step_volume_mm3.begin(), r.step_volume_mm3.end(), 0.0);
+      std::fill(r.step_depth_mm.begin(), r.step_depth_mm.end(), 0.0f);
+      r.removed_mm3 = r.mrr_mean_mm3_s = r.mrr_peak_mm3_s = 0;
+      continue;
+    }
     totals_.removed_mm3 += r.removed_mm3;
     if (cmd.kind == CanonKind::Traverse && r.removed_mm3 > kCollisionMinMm3) {
       r.collision = true;
@@ -361,6 +374,24 @@ RemovalResult RemovalSimulator::summary() const {
   if (engine_) {
     r.memory_bytes = std::max(r.memory_bytes, engine_->memory_bytes());
     r.stats = engine_->stats();
+  }
+  if (air_rapids_ > 0) {
+    std::string lines;
+    for (const int line : air_rapid_lines_)
+      lines += (lines.empty() ? "" : ", ") + std::to_string(line);
+    if (air_rapids_ > air_rapid_lines_.size()) lines += ", ...";
+    const std::string count =
+        std::to_string(air_rapids_) + (air_rapids_ == 1 ? " rapid" : " rapids");
+    r.diagnostics.push_back(
+        {Severity::Note, options_.source_path, air_rapid_lines_.front(), 0,
+         "the guessed stock reaches where " + count + (air_rapids_ == 1 ? " goes" : " go") + " (" +
+             (air_rapids_ == 1 ? "line " : "lines ") + lines +
+             "): a CAM rapids through air only, so the real stock is smaller there; the " +
+             format_mm3(air_rapid_mm3_) +
+             " mm^3 they pass through is taken as air, not as a cut (give the stock to check "
+             "rapids for collisions)"});
+    r.stock_description +=
+        "; trimmed where " + count + (air_rapids_ == 1 ? " enters" : " enter") + " it";
   }
   return r;
 }

@@ -22,4 +22,11 @@ inline bool warned(const ncjoule::Estimate& e, std::string_view words) {
   return false;
 }
 
+// Whether any diagnostic of the estimate (error, warning or note) holds `words`.
+inline bool mentioned(const ncjoule::Estimate& e, std::string_view words) {
+  for (const ncjoule::Diagnostic& d : e.diagnostics)
+    if (d.message.find(words) != std::string::npos) return true;
+  return false;
+}
+
 } // namespace estimate_test

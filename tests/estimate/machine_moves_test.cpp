@@ -35,6 +35,7 @@ TEST_CASE("without work offsets, G53 Z0 and G91 G28 Z0 go up to Z home, not down
     const Estimate e = estimate_program(make_source("o1001.nc", haas_program(home)), machine, {});
     REQUIRE_FALSE(e.failed);
     CHECK_FALSE(warned(e, "collision"));
+    CHECK_FALSE(mentioned(e, "a CAM rapids through air"));
     CHECK_FALSE(warned(e, "rated power"));
     // The default stock: the two passes' level at Z-1 is its top and bottom; the positioning at
     // F5000 and the moves from Z home neither raise it (a stock up to Z home or Z5 would make

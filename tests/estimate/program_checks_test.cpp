@@ -38,6 +38,7 @@ TEST_CASE("a program posted for a machine whose +Z points into the work") {
   CHECK_FALSE(warned(up, "every rapid across XY runs below the cuts"));
   CHECK(warned(down, "every rapid across XY runs below the cuts"));
   CHECK_FALSE(warned(down, "collision"));
+  CHECK_FALSE(mentioned(down, "a CAM rapids through air")); // no rapid enters the default stock
   // The mirrored program removes what its twin does (the second pass: 1.5 mm of a 6 mm slot
   // over the default stock's 76 mm), in the same time.
   CHECK(up.energy.removed_mm3 > 100);

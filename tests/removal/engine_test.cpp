@@ -124,6 +124,47 @@ TEST_CASE("air moves remove nothing: a rapid through the stock is a collision") 
   CHECK(r.diagnostics[0].message.find("collision") != std::string::npos);
 }
 
+TEST_CASE("a rapid into a guessed stock marks the guess too large there, not a collision") {
+  // An adaptive's entry outside the part: a pass at Z0 (the guessed top), then the tool rapids
+  // down beside the second pass's start at X-1 and feeds in at Z-3. The default box is the cuts
+  // widened by the tool's radius, so the rapid comes down inside it. Given as the stock, the
+  // same box makes it a collision.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(300).rapid(0, 0, 5).rapid(0, 0, 1).feed(0, 0, 0).feed(30, 0, 0);
+  p.rapid(30, 0, 5).rapid(-1, 0, 5).rapid(-1, 0, -2); // [6]: down beside the cut
+  p.feed(-1, 0, -3).feed(30, 0, -3).rapid(30, 0, 5);
+  const Timeline timeline = constant_speed_timeline(p.commands(), 0.1);
+  const RemovalResult guessed =
+      simulate_removal(p.commands(), timeline, tools, StockSpec{}); // the default box
+  REQUIRE(guessed.stock_source == StockSource::Guessed);
+  CHECK(guessed.stock_box.xmin == doctest::Approx(-4));
+  CHECK(guessed.stock_box.zmin == doctest::Approx(-3));
+  CHECK(guessed.stock_box.zmax == doctest::Approx(0));
+  // The rapid from Z0 to Z-2 passes through a disk of the box: air, no volume, no collision.
+  CHECK(guessed.commands[6].removed_mm3 == 0);
+  CHECK_FALSE(guessed.commands[6].collision);
+  REQUIRE(guessed.diagnostics.size() == 1);
+  CHECK(guessed.diagnostics[0].severity == Severity::Note);
+  CHECK(guessed.diagnostics[0].line == p.commands()[6].line + 1);
+  CHECK(guessed.diagnostics[0].message.find("where 1 rapid goes (line ") != std::string::npos);
+  CHECK(guessed.stock_description.find("trimmed where 1 rapid enters it") != std::string::npos);
+  // The volume the rapid passed through is not counted anywhere, and the feed that follows
+  // finds it gone.
+  double sum = 0;
+  for (const CommandRemoval& c : guessed.commands)
+    sum += c.removed_mm3;
+  CHECK(guessed.removed_mm3 == doctest::Approx(sum));
+
+  const RemovalResult given =
+      simulate_removal(p.commands(), timeline, tools, box_stock(guessed.stock_box));
+  // The whole 6 mm disk, 2 mm deep: 56.5 mm^3, a collision.
+  CHECK(given.commands[6].collision);
+  CHECK(given.commands[6].removed_mm3 == doctest::Approx(3.14159265 * 9 * 2).epsilon(0.02));
+  CHECK(given.removed_mm3 ==
+        doctest::Approx(guessed.removed_mm3 + given.commands[6].removed_mm3).epsilon(1e-9));
+}
+
 TEST_CASE("grid and sample step helpers") {
   const std::map<int, Tool> tools{{1, flat_end_mill(1, 12)}, {2, ball_end_mill(2, 3)}};
   CHECK(default_grid_spacing(tools) == doctest::Approx(3.0 / 120));

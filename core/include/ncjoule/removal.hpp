@@ -493,8 +493,9 @@ public:
   // The sample step the planner should use for this grid and these tools.
   double sample_step_mm() const { return sample_step_; }
   // Removes a batch of moves, in order: out[k] is moves[k]'s removal. Moves of a tool not in
-  // `tools`, and commands that are not moves, remove nothing. Rapids that cut are flagged as
-  // collisions with a warning.
+  // `tools`, and commands that are not moves, remove nothing. Rapids that cut a given stock are
+  // flagged as collisions with a warning; rapids that enter a guessed stock show where the guess
+  // is too large: what they pass through is air (no volume), and summary() notes them.
   void remove(const std::vector<TimedMove>& moves, std::vector<CommandRemoval>& out);
   // Everything but the per-command list: stock, grid, volumes, memory, work counters, and the
   // diagnostics so far.
@@ -512,7 +513,11 @@ private:
   bool warned_no_samples_ = false;
   bool first_move_checked_ = false; // the program's first move was checked for starting inside
   bool warned_rotary_ = false;      // a move of A/B/C was said to make removal approximate
-  std::vector<RemovalStep> steps_;  // scratch
+  // Rapids that entered a guessed stock (taken as air, see remove()): count, volume, first lines.
+  std::size_t air_rapids_ = 0;
+  double air_rapid_mm3_ = 0;
+  std::vector<int> air_rapid_lines_;
+  std::vector<RemovalStep> steps_; // scratch
   std::vector<double> volumes_;
   std::vector<double> cut_tops_;
 };

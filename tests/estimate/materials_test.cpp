@@ -136,6 +136,21 @@ TEST_CASE("a cut asking the spindle for more than its rating is flagged on its b
   small.power.spindle_rated_w = 200; // a hobby spindle
   const Estimate e = run(slot(8000), small, "mild-steel");
   CHECK(warned(e, "more than its rated power"));
+  CHECK(warned(e, "the CAM feeds and speeds are wrong"));
+  CHECK_FALSE(warned(e, "the stock is guessed"));
+  // Without a stock, the box of the cuts is a guess, and a guess that overloads the spindle is
+  // the likelier thing to be wrong (rest machining): the warning says so first.
+  EstimateOptions no_stock;
+  no_stock.material = "mild-steel";
+  const Estimate guessed = estimate_program(
+      make_source("two-levels.ngc", "G21 G90 G17\n(T1 D=6. CR=0. - ZMIN=-3. - FLAT END MILL)\n"
+                                    "T1 M6\nS8000 M3\nG0 X-10 Y0 Z5\nG0 Z0\nG1 X60 F600\n"
+                                    "G0 Z5\nG0 X-10\nG0 Z-3\nG1 X60\nG0 Z5\nM5\nM30\n"),
+      small, no_stock);
+  REQUIRE(guessed.removal);
+  CHECK(guessed.energy.removed_mm3 > 1000); // the second pass: 70 x 6 x 3 mm, less its ends
+  CHECK(warned(guessed, "more than its rated power"));
+  CHECK(warned(guessed, "the stock is guessed as the full box of the cuts"));
   bool flagged = false;
   for (const LineSummary& b : e.lines)
     flagged |= b.line == 6 && b.spindle_load > 1;

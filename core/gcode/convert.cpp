@@ -256,6 +256,9 @@ void Interpreter::check_m_codes(const BlockValues& v) {
     case 29:
       break; // overrides, I/O, state save, spindle orient: no motion, no time of their own
     default:
+      if (std::find(dialect_.machine_m_codes.begin(), dialect_.machine_m_codes.end(), m) !=
+          dialect_.machine_m_codes.end())
+        break; // the family's own (a chip conveyor, a brake): nothing to time or count
       if (m >= 100 && m <= 199)
         note(v.column['m' - 'a'], "user M code M" + std::to_string(m) + ": no time counted");
       else

@@ -32,6 +32,9 @@ std::vector<Dialect> make_dialects() {
   fanuc.max_line_length = 128;
   fanuc.canned_cycle_group = true;
   fanuc.last_code_of_group_wins = true;
+  // The builders' M codes differ; a rotary table's clamp and unclamp (M10/M11) is what Fanuc-
+  // controlled mills with a 4th axis share, and what CAM posts for them write around every index.
+  fanuc.machine_m_codes = {10, 11};
   all.push_back(fanuc);
 
   Dialect haas = fanuc;
@@ -39,6 +42,16 @@ std::vector<Dialect> make_dialects() {
   haas.dwell_p_in_ms = false;
   haas.dwell_p_integer_is_ms = true; // G4 P1000 = 1 s, G4 P1.0 = 1 s
   haas.haas_local_subprograms = true;
+  // Haas mill M codes (Haas Mill Operator's Manual, M-codes chapter) that move no axis ncjoule
+  // times: 4th/5th-axis brakes (M10-M13), user and relay outputs (M21-M28, M51-M59, M61-M69),
+  // chip auger (M31, M33), coolant spigot (M34, M35), gear ranges (M41, M42), pallet and part
+  // checks (M36, M46, M48, M50), probe-skip alarms (M78, M79), doors (M80, M81), tool unclamp
+  // and clamp (M82, M86), air blast (M83, M84), through-spindle coolant (M88, M89), sleep (M95),
+  // input jumps and prompts (M96, M109). Their pumps and motors are not in the power models.
+  haas.machine_m_codes = {10, 11, 12, 13, 21, 22, 23, 24, 25, 26, 27, 28, 31, 33,
+                          34, 35, 36, 41, 42, 46, 48, 50, 51, 52, 53, 54, 55, 56,
+                          57, 58, 59, 61, 62, 63, 64, 65, 66, 67, 68, 69, 75, 76,
+                          77, 78, 79, 80, 81, 82, 83, 84, 86, 88, 89, 95, 96, 109};
   all.push_back(haas);
 
   Dialect grbl;
@@ -100,6 +113,10 @@ std::vector<Dialect> make_dialects() {
   // Marlin keeps a line's code in a 96-byte buffer (MAX_CMD_SIZE, with its terminating zero)
   // and skips what comes past it: lines of 95 bytes stay whole whatever reads them.
   reprap.max_line_length = 95;
+  // Marlin's motors on and off (M17, M18, M84), finish moves (M400), message (M117), fan (M106,
+  // M107), report position (M114), feed and flow overrides (M220, M221): no motion of their own.
+  reprap.machine_m_codes = {17, 18, 84, 106, 107, 114, 117, 220, 221, 400};
+  reprap.end_code_optional = true;
   all.push_back(reprap);
   return all;
 }
@@ -119,6 +136,20 @@ std::string without_annotations(std::string line) {
   for (const char* marker : {";ncj ", "; ncj "})
     if (const std::size_t at = line.find(marker); at != std::string::npos) line.erase(at);
   return line;
+}
+
+// Whether `line` (lower case) holds the word `code` ("m31") not followed by a digit or '.'
+// (M310, M31.5 are other codes) nor preceded by a letter (a word inside a name).
+bool has_code(const std::string& line, const char* code) {
+  const std::size_t n = std::char_traits<char>::length(code);
+  for (std::size_t at = line.find(code); at != std::string::npos; at = line.find(code, at + 1)) {
+    const bool letter_before = at > 0 && std::isalpha(static_cast<unsigned char>(line[at - 1]));
+    const bool digit_after =
+        at + n < line.size() &&
+        (std::isdigit(static_cast<unsigned char>(line[at + n])) || line[at + n] == '.');
+    if (!letter_before && !digit_after) return true;
+  }
+  return false;
 }
 
 } // namespace
@@ -185,6 +216,9 @@ DialectChoice choose_dialect(const SourceFile& source) {
     if (has(l, "fanuc")) vote(Fanuc, "'fanuc' in the text");
     if (has(l, "g187")) vote(Haas, "G187");
     if (has(l, "m97")) vote(Haas, "M97 local subprogram call");
+    // Chip auger and through-spindle coolant: Haas's own M codes, which its posts write.
+    for (const char* code : {"m31", "m33", "m88", "m89"})
+      if (has_code(l, code)) vote(Haas, "Haas code " + to_upper(code));
     if (has(l, "haas")) vote(Haas, "'haas' in the text");
     if (has(l, "mach3") || has(l, "mach4")) vote(Mach, "'mach3/mach4' in the text");
     if (has(l, "uccnc")) vote(Mach, "'uccnc' in the text");

@@ -337,7 +337,10 @@ InterpretResult Interpreter::run() {
   } else if (!finished_) {
     const std::size_t n = source_.lines.size();
     current_line_ = n ? int(n - 1) : 0;
-    warning(0, "the program has no M2 or M30: it ends at the end of the file");
+    if (dialect_.end_code_optional)
+      note(0, "the program has no M2 or M30: it ends at the end of the file");
+    else
+      warning(0, "the program has no M2 or M30: it ends at the end of the file");
     result_.completed = true;
   }
   result_.program_end = finished_;

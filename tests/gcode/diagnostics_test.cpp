@@ -107,6 +107,24 @@ TEST_CASE("dwell units per dialect") {
   CHECK(errors(run("G4\nM2\n")) == 1);
 }
 
+TEST_CASE("a family's own M codes are read without a warning in its dialect") {
+  // A Haas program's chip auger, through-spindle coolant and air blast; a Fanuc 4th axis's
+  // clamp; Marlin's motors-off and finish-moves.
+  const std::string haas = "G20\nM31\nM88\nG0 X1\nM89\nM83\nM84\nM33\nM10\nM11\nM30\n";
+  CHECK(warnings(run(haas, "haas")) == 0);
+  CHECK(warnings(run(haas, "linuxcnc")) == 8); // a LinuxCNC control knows none of them
+  CHECK(warnings(run(haas, "fanuc")) == 6);    // a Fanuc knows the clamp only
+  // Marlin streams a program with no end code: that is a note there, a warning elsewhere.
+  const std::string marlin = "G21\nM17\nG0 X1\nM400\nM84\n";
+  CHECK(warnings(run(marlin, "reprap")) == 0);
+  CHECK(notes(run(marlin, "reprap")) >= 1);
+  CHECK(warnings(run(marlin, "linuxcnc")) == 4);
+  // A code outside the family's list is still unknown.
+  const Toolpath odd = run("G20\nM31\nM87\nM30\n", "haas");
+  REQUIRE(warnings(odd) == 1);
+  CHECK(with_severity(odd, Severity::Warning)[0].message.find("M87") != std::string::npos);
+}
+
 TEST_CASE("dialect detection") {
   auto detect = [](const std::string& text) {
     return detect_dialect(make_source("x.nc", text)).name;
@@ -117,6 +135,14 @@ TEST_CASE("dialect detection") {
   CHECK(detect("%\nO1234 (HAAS VF2)\nG187 P1\nM30\n%\n") == "haas");
   CHECK(detect("$110=500\nG21 G0 X1\n") == "grbl");
   CHECK(detect("(Mach3 post)\nG21\n") == "mach3");
+  // Haas's own chip-auger and through-spindle-coolant codes tell a Haas post (Fusion's Haas
+  // posts write neither "HAAS" nor G187); M310 or a word ending in "m31" do not.
+  CHECK(detect("%\nO1234 (PART)\nG20\nM31\nM30\n%\n") == "haas");
+  CHECK(detect("%\nO1234 (PART)\nG20\nM88\nM30\n%\n") == "haas");
+  CHECK(detect("%\nO1234 (PART)\nG20\nM310\nM30\n%\n") == "fanuc");
+  CHECK(detect("%\nO1234 (PROGRAM31)\nG20\nM30\n%\n") == "fanuc");
+  CHECK(describe_dialect_choice(choose_dialect(make_source("x.nc", "O1\nM88\nM30\n"))) ==
+        "haas (detected: Haas code M88 at line 2)");
   // The detected dialect is the one used when none is given.
   const Toolpath p = run("O0001\nG4 P2000\nM30\n", "");
   CHECK(p.result.dialect.name == "fanuc");

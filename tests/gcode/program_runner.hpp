@@ -65,6 +65,10 @@ inline std::size_t warnings(const Toolpath& path) {
   return with_severity(path, Severity::Warning).size();
 }
 
+inline std::size_t notes(const Toolpath& path) {
+  return with_severity(path, Severity::Note).size();
+}
+
 // Canonical lines as format_canon prints them, for expected move lists in tests.
 inline std::string T(double x, double y, double z) {
   char b[128];

@@ -121,6 +121,13 @@ struct Dialect {
   // A '%' line holds '%' alone (LinuxCNC: "Bad character '%' used" for "%name", "% text" or
   // "%(comment)"); elsewhere a name or a comment may follow it.
   bool percent_alone = false;
+  // M codes the family's controls run that move nothing ncjoule times and draw nothing it
+  // models (chip conveyor, air blast, axis brakes, messages): read without a warning. Each
+  // family's manual names its own; a code outside the list stays an "unknown code" warning.
+  std::vector<int> machine_m_codes;
+  // A program streamed line by line with no end code (Marlin has no M2/M30 of its own): ending
+  // at the end of the file is a note, not a warning.
+  bool end_code_optional = false;
   std::string comment_open = "("; // what the annotator writes
   std::string comment_close = ")";
 };

@@ -95,6 +95,11 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(finite_between(0, 100));
   cmd.add_option("--price", s.price_per_kwh, "Price per kWh (overrides the profile)")
       ->check(finite_between(0, 1e6));
+  cmd.add_option("--machine-rate", s.machine_rate_per_hour,
+                 "Machine-hour rate besides electricity (depreciation, space, operator), per "
+                 "hour in the profile's currency; added to the cost (overrides the profile's "
+                 "machine_rate_per_hour)")
+      ->check(finite_between(0, 1e7));
 }
 
 bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
@@ -253,6 +258,7 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   options.removal.memory_budget_bytes = memory_budget_bytes(s);
   options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
   options.energy.price_per_kwh = s.price_per_kwh;
+  options.energy.machine_rate_per_hour = s.machine_rate_per_hour;
   return options;
 }
 

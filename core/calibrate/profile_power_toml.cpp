@@ -53,7 +53,8 @@ KeptPowerKeys kept_power_keys(const toml::table* power) {
     const std::string k(key.str());
     // Quantities may carry their unit in the key (tool_change_w, c1_kw): all spellings go.
     if (k == "source" || k == "model" || k.rfind("tool_change", 0) == 0 || k == "cutting_term" ||
-        k == "co2_kg_per_kwh" || k == "price_per_kwh" || k == "currency" || k == "pavanaskar")
+        k == "co2_kg_per_kwh" || k == "price_per_kwh" || k == "machine_rate_per_hour" ||
+        k == "currency" || k == "pavanaskar")
       continue;
     if (k == "zhou") {
       if (const auto* z = node.as_table())
@@ -103,6 +104,8 @@ std::string power_section_toml(const PowerConstants& k,
       << "  # fitted: c3, c4 of [power.zhou]; material: the workpiece's k_c\n";
   out << "co2_kg_per_kwh = " << number(k.co2_kg_per_kwh) << "\n";
   out << "price_per_kwh = " << number(k.price_per_kwh) << "\n";
+  if (k.machine_rate_per_hour > 0)
+    out << "machine_rate_per_hour = " << number(k.machine_rate_per_hour) << "\n";
   out << "currency = " << quoted(k.currency) << "\n";
   out << kept.power;
   out << "\n[power.pavanaskar]\n" << source_line;

@@ -200,7 +200,11 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   if (result.duration_s > 0) result.mean_power_w = result.energy_j / result.duration_s;
   const double kwh = result.energy_j / kJoulesPerKwh;
   result.co2_kg = kwh * options_.co2_kg_per_kwh.value_or(constants_.co2_kg_per_kwh);
-  result.cost = kwh * options_.price_per_kwh.value_or(constants_.price_per_kwh);
+  result.electricity_cost = kwh * options_.price_per_kwh.value_or(constants_.price_per_kwh);
+  result.machine_rate_per_hour =
+      options_.machine_rate_per_hour.value_or(constants_.machine_rate_per_hour);
+  result.machine_cost = result.duration_s / 3600 * result.machine_rate_per_hour;
+  result.cost = result.electricity_cost + result.machine_cost;
   result.currency = options_.currency.value_or(constants_.currency);
   if (over_max_line_ >= 0) {
     char text[240];
@@ -310,6 +314,9 @@ EnergyResult integrate_energy(const std::vector<OperatingSegment>& trace, const 
   result.peak_power_w = totals.peak_power_w;
   result.co2_kg = totals.co2_kg;
   result.cost = totals.cost;
+  result.electricity_cost = totals.electricity_cost;
+  result.machine_cost = totals.machine_cost;
+  result.machine_rate_per_hour = totals.machine_rate_per_hour;
   result.currency = totals.currency;
   result.model_description = totals.model_description;
   return result;

@@ -266,7 +266,9 @@ OperationTracker::finish(const std::function<bool(int)>& cuts_on, const EnergyRe
     }
     const double share = totals.energy_j > 0 ? op.energy_j / totals.energy_j : 0.0;
     op.co2_kg = totals.co2_kg * share;
-    op.cost = totals.cost * share;
+    // Electricity by the operation's energy, the machine-hour rate by its time.
+    const double time_share = totals.duration_s > 0 ? op.time_s / totals.duration_s : 0.0;
+    op.cost = totals.electricity_cost * share + totals.machine_cost * time_share;
     out.push_back(std::move(op));
     index_map[i] = std::uint16_t(std::min<std::size_t>(out.size(), 65535));
   }

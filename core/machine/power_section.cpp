@@ -117,6 +117,8 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   p.tool_change_w = t.quantity("tool_change", Dimension::Power, Range::NonNegative);
   p.co2_kg_per_kwh = t.number("co2_kg_per_kwh", Range::NonNegative);
   p.price_per_kwh = t.number("price_per_kwh", Range::NonNegative);
+  p.machine_rate_per_hour =
+      t.optional_number("machine_rate_per_hour", Range::NonNegative).value_or(0.0);
   p.currency = t.string("currency");
   // Each model needs its own table; the combined model needs both, or only Pavanaskar's when its
   // cutting term is the material's (Zhou's table gives nothing else to it).

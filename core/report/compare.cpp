@@ -35,6 +35,9 @@ ProgramTotals program_totals(const Estimate& e) {
   t.sec_j_mm3 = e.energy.sec_j_mm3;
   t.co2_kg = e.energy.co2_kg;
   t.cost = e.energy.cost;
+  t.machine_cost = e.energy.machine_cost;
+  for (const OperationSummary& op : e.operations)
+    t.operations.push_back({op.name, op.time_s, op.energy_j, op.cost});
   t.currency = e.energy.currency;
   t.components_j = e.energy.components_j;
   t.air_cut_s = e.time.air_cut_s;
@@ -106,9 +109,30 @@ std::vector<std::string> comparison_warnings(const std::vector<RankedProgram>& r
   return out;
 }
 
-std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs) {
+std::optional<RankBy> parse_rank_by(std::string_view text) {
+  if (text == "energy") return RankBy::Energy;
+  if (text == "time") return RankBy::Time;
+  if (text == "cost") return RankBy::Cost;
+  return std::nullopt;
+}
+
+std::string_view rank_by_name(RankBy by) {
+  switch (by) {
+  case RankBy::Time:
+    return "time";
+  case RankBy::Cost:
+    return "cost";
+  case RankBy::Energy:
+    break;
+  }
+  return "energy";
+}
+
+std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs, RankBy by) {
   std::stable_sort(programs.begin(), programs.end(),
-                   [](const ProgramTotals& a, const ProgramTotals& b) {
+                   [by](const ProgramTotals& a, const ProgramTotals& b) {
+                     if (by == RankBy::Cost && a.cost != b.cost) return a.cost < b.cost;
+                     if (by == RankBy::Time && a.time_s != b.time_s) return a.time_s < b.time_s;
                      if (a.energy_j != b.energy_j) return a.energy_j < b.energy_j;
                      if (a.time_s != b.time_s) return a.time_s < b.time_s;
                      return a.file < b.file;
@@ -151,11 +175,55 @@ std::string explain_difference(const RankedProgram& r, std::size_t max_component
   return text;
 }
 
+std::string explain_by_operation(const RankedProgram& r, const RankedProgram& best, RankBy by,
+                                 std::size_t max_operations) {
+  if (r.rank == 1) return {};
+  auto measure = [by](const OperationTotals& op) {
+    return by == RankBy::Time ? op.time_s : by == RankBy::Cost ? op.cost : op.energy_j / 1000;
+  };
+  // Operations of one name are summed (a post may split one into several runs).
+  std::vector<std::pair<std::string, double>> diffs; // name, this minus best
+  auto add = [&diffs](const std::string& name, double value) {
+    for (auto& d : diffs)
+      if (d.first == name) return void(d.second += value);
+    diffs.emplace_back(name, value);
+  };
+  for (const OperationTotals& op : r.totals.operations)
+    add(op.name, measure(op));
+  for (const OperationTotals& op : best.totals.operations)
+    add(op.name, -measure(op));
+  auto here = [](const ProgramTotals& t, const std::string& name) {
+    return std::any_of(t.operations.begin(), t.operations.end(),
+                       [&](const OperationTotals& op) { return op.name == name; });
+  };
+  const double noise = by == RankBy::Time ? 0.05 : by == RankBy::Cost ? 5e-5 : 0.05e-3;
+  std::erase_if(diffs, [noise](const auto& d) { return std::abs(d.second) <= noise; });
+  std::stable_sort(diffs.begin(), diffs.end(), [](const auto& a, const auto& b) {
+    return std::abs(a.second) > std::abs(b.second);
+  });
+  if (diffs.size() > max_operations) diffs.resize(max_operations);
+  std::string text;
+  for (const auto& [name, diff] : diffs) {
+    char value[64];
+    if (by == RankBy::Time)
+      std::snprintf(value, sizeof value, "%+.1f s", diff);
+    else if (by == RankBy::Cost)
+      std::snprintf(value, sizeof value, "%+.4f %s", diff, r.totals.currency.c_str());
+    else
+      std::snprintf(value, sizeof value, "%+.1f kJ", diff);
+    const char* where = !here(best.totals, name) ? " (only here)"
+                        : !here(r.totals, name)  ? " (only in the best)"
+                                                 : "";
+    text += (text.empty() ? "" : ", ") + name + where + " " + value;
+  }
+  return text;
+}
+
 std::string comparison_json(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
-                            int indent) {
+                            int indent, RankBy by) {
   Json j;
   j["machine"] = Json{{"name", machine.name}, {"file", machine.source_path}};
-  j["ranked_by"] = "energy_j";
+  j["ranked_by"] = by == RankBy::Time ? "time_s" : by == RankBy::Cost ? "cost" : "energy_j";
   Json list = Json::array();
   for (const RankedProgram& r : ranked) {
     const ProgramTotals& t = r.totals;
@@ -169,9 +237,11 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
     p["sec_j_mm3"] = t.sec_j_mm3;
     p["co2_kg"] = t.co2_kg;
     p["cost"] = t.cost;
+    p["machine_cost"] = t.machine_cost;
     p["currency"] = t.currency;
     p["components"] = components_json(t.components_j);
     p["why"] = explain_difference(r);
+    p["why_by_operation"] = explain_by_operation(r, ranked.front(), by);
     p["vs_best"] = Json{{"time_s", r.time_diff_s},
                         {"time_pct", r.time_diff_pct},
                         {"energy_j", r.energy_diff_j},

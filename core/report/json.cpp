@@ -203,6 +203,9 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
   w.field("peak_power_w", energy.peak_power_w);
   w.field("co2_kg", energy.co2_kg);
   w.field("cost", energy.cost);
+  w.field("electricity_cost", energy.electricity_cost);
+  w.field("machine_cost", energy.machine_cost);
+  w.field("machine_rate_per_hour", energy.machine_rate_per_hour);
   w.field("currency", energy.currency);
   write_components(w, energy.components_j);
   w.key("operations");

@@ -1,6 +1,6 @@
-// `ncjoule compare A.nc B.nc ... --machine PROFILE [--json]`: estimates alternatives of the same
-// part on one machine and ranks them by energy, with the difference of each to the best, and
-// component by component, why (docs/report.md).
+// `ncjoule compare A.nc B.nc ... --machine PROFILE [--by energy|time|cost] [--json]`: estimates
+// alternatives of the same part on one machine and ranks them, with the difference of each to
+// the best and why, component by component and operation by operation (docs/report.md).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +20,7 @@ namespace {
 struct CompareOptions {
   std::vector<std::string> files;
   EstimateSettings settings;
+  std::string by = "energy";
   bool json = false;
 };
 
@@ -69,7 +70,8 @@ std::string diff_text(double diff, double pct, const char* unit, int decimals) {
   return text;
 }
 
-void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile& machine) {
+void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
+                 RankBy by) {
   const std::vector<std::string> names = labels_of(ranked);
   std::size_t width = 7;
   for (const std::string& name : names)
@@ -81,7 +83,10 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
   }
   const std::vector<std::string> time_cells = time_column(times), air_cells = time_column(air);
   const std::string currency = ranked.front().totals.currency;
-  std::printf("%zu alternatives on %s, least energy first\n", ranked.size(), machine.name.c_str());
+  const char* order = by == RankBy::Time   ? "shortest time"
+                      : by == RankBy::Cost ? "lowest cost"
+                                           : "least energy";
+  std::printf("%zu alternatives on %s, %s first\n", ranked.size(), machine.name.c_str(), order);
   for (const std::string& warning : comparison_warnings(ranked))
     std::printf("warning: %s\n", warning.c_str());
   std::printf("\n #  %-*s %6s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n",
@@ -140,10 +145,21 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
     std::printf("\n");
   }
   std::printf("\n");
-  for (std::size_t i = 1; i < ranked.size(); ++i)
-    std::printf("%s uses %.2f kJ more than %s: %s\n", names[i].c_str(),
-                ranked[i].energy_diff_j / 1000, names[0].c_str(),
-                explain_difference(ranked[i]).c_str());
+  for (std::size_t i = 1; i < ranked.size(); ++i) {
+    const RankedProgram& r = ranked[i];
+    if (by == RankBy::Time)
+      std::printf("%s takes %.1f s longer than %s", names[i].c_str(), r.time_diff_s,
+                  names[0].c_str());
+    else if (by == RankBy::Cost)
+      std::printf("%s costs %.4f %s more than %s", names[i].c_str(), r.cost_diff,
+                  r.totals.currency.c_str(), names[0].c_str());
+    else
+      std::printf("%s uses %.2f kJ more than %s: %s", names[i].c_str(), r.energy_diff_j / 1000,
+                  names[0].c_str(), explain_difference(r).c_str());
+    const std::string ops = explain_by_operation(r, ranked.front(), by);
+    std::printf("%sby operation: %s\n", by == RankBy::Energy ? "; " : ": ",
+                ops.empty() ? "no operation differs" : ops.c_str());
+  }
 }
 
 int run_compare(const CompareOptions& o) {
@@ -162,11 +178,12 @@ int run_compare(const CompareOptions& o) {
   std::vector<ProgramTotals> totals;
   for (const EstimatedProgram& p : programs)
     totals.push_back(program_totals(p.estimate));
-  const std::vector<RankedProgram> ranked = rank_programs(totals);
+  const RankBy by = parse_rank_by(o.by).value_or(RankBy::Energy); // CLI11 checked the word
+  const std::vector<RankedProgram> ranked = rank_programs(totals, by);
   if (o.json)
-    std::cout << comparison_json(ranked, machine) << '\n';
+    std::cout << comparison_json(ranked, machine, 1, by) << '\n';
   else
-    print_table(ranked, machine);
+    print_table(ranked, machine, by);
   std::cout.flush();
   return status;
 }
@@ -174,10 +191,15 @@ int run_compare(const CompareOptions& o) {
 const Registration registration([](CLI::App& app, int& exit_code) {
   auto options = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "compare", "Rank alternative programs for the same part by energy on one machine, with "
-                 "time, SEC, CO2, cost, the difference to the best and its reasons by component");
+      "compare", "Rank alternative programs for the same part by energy, time or cost on one "
+                 "machine, with SEC, CO2, the difference to the best and its reasons by "
+                 "component and by operation");
   cmd->add_option("files", options->files, "NC programs to compare (two or more)")->required();
   add_estimate_settings(*cmd, options->settings);
+  cmd->add_option("--by", options->by,
+                  "Rank by energy (default), time, or cost (electricity plus the machine-hour "
+                  "rate, --machine-rate or the profile's machine_rate_per_hour)")
+      ->check(CLI::IsMember({"energy", "time", "cost"}));
   cmd->add_flag("--json", options->json, "Print the ranking as JSON (docs/report.md)");
   cmd->footer("Exit codes: 0 ranked; 1 bad command line; 2 a program or the profile cannot be "
               "read or estimated.");

@@ -69,8 +69,14 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
               energy.energy_j / 3.6e6, energy.energy_j / 1000, energy.mean_power_w,
               energy.peak_power_w);
   std::printf("  removed     %.0f mm^3, SEC %.2f J/mm^3\n", energy.removed_mm3, energy.sec_j_mm3);
-  std::printf("  CO2         %.4f kg, cost %.4f %s\n", energy.co2_kg, energy.cost,
-              energy.currency.c_str());
+  if (energy.machine_cost > 0)
+    std::printf("  CO2         %.4f kg, cost %.2f %s (machine time %.2f at %g/h, electricity "
+                "%.4f)\n",
+                energy.co2_kg, energy.cost, energy.currency.c_str(), energy.machine_cost,
+                energy.machine_rate_per_hour, energy.electricity_cost);
+  else
+    std::printf("  CO2         %.4f kg, cost %.4f %s\n", energy.co2_kg, energy.cost,
+                energy.currency.c_str());
   for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
     if (energy.components_j[i] == 0) continue;
     std::printf("    %-12s %10.1f kJ (%.1f%%)\n",

@@ -182,5 +182,55 @@ os.close(master)
 check(b"estimating [" in seen and seen.endswith(b"\r\x1b[K"),
       f"progress bar on a terminal, erased at the end ({seen[-60:]!r})")
 
+# Rank by time or by cost; cost is the electricity plus the time at a machine-hour rate.
+def ranked(*extra):
+    r = run("compare", X, Y, "--machine", HAAS, "--stock", stock, "--price", "0.2", "--json",
+            *extra)
+    check(r.returncode == 0, f"compare {' '.join(extra)} exits 0 ({r.stderr[:200]!r})")
+    return json.loads(r.stdout)
+
+
+by_time = ranked("--by", "time")
+check(by_time["ranked_by"] == "time_s", "--by time is said in the JSON")
+times = [p["time_s"] for p in by_time["programs"]]
+check(times == sorted(times), f"--by time: shortest first ({times})")
+rate = 90.0
+by_cost = ranked("--by", "cost", "--machine-rate", str(rate))
+check(by_cost["ranked_by"] == "cost", "--by cost is said in the JSON")
+costs = [p["cost"] for p in by_cost["programs"]]
+check(costs == sorted(costs), f"--by cost: lowest first ({costs})")
+for p in by_cost["programs"]:
+    check(abs(p["machine_cost"] - p["time_s"] / 3600 * rate) <= 1e-9 * p["machine_cost"],
+          f"machine cost = time x rate ({p['machine_cost']:.6f})")
+    electricity = p["energy_j"] / 3.6e6 * 0.2
+    check(abs(p["cost"] - (electricity + p["machine_cost"])) <= 1e-9 * p["cost"],
+          f"cost = electricity {electricity:.6f} + machine time")
+second = by_cost["programs"][1]
+check(second["why_by_operation"] != "" and second["currency"] in second["why_by_operation"],
+      f"the second's cost difference by operation ({second['why_by_operation']!r})")
+check(by_cost["programs"][0]["why_by_operation"] == "", "the best has no 'why'")
+# Without a rate, cost is the electricity alone and ranks as energy does.
+no_rate = ranked("--by", "cost")
+check([p["file"] for p in no_rate["programs"]] == [p["file"] for p in progs],
+      "--by cost without a rate ranks as energy does")
+check(all(p["machine_cost"] == 0 for p in no_rate["programs"]), "no rate: no machine cost")
+
+r = run("compare", X, Y, "--machine", HAAS, "--stock", stock, "--by", "time")
+check(r.returncode == 0 and "shortest time first" in r.stdout, "the table says its order")
+check("longer than" in r.stdout and "by operation:" in r.stdout,
+      f"the table says how much longer, by operation ({r.stdout[-300:]!r})")
+r = run("compare", X, Y, "--machine", HAAS, "--by", "speed")
+check(r.returncode != 0 and "speed" in r.stderr, f"--by speed is refused ({r.stderr[:120]!r})")
+
+# The estimate's cost and its operations' costs with a rate: the parts add up.
+r = run("estimate", X, "--machine", HAAS, "--stock", stock, "--machine-rate", "90", "--json")
+doc = json.loads(r.stdout)
+energy = doc.get("energy", doc)
+total = energy["cost"]
+ops = sum(op["cost"] for op in energy["operations"])
+check(abs(ops - total) <= 1e-9 * total, f"operations' costs add up to the total ({ops} vs {total})")
+r = run("estimate", X, "--machine", HAAS, "--stock", stock, "--machine-rate", "90")
+check("machine time" in r.stdout and "/h" in r.stdout, "the summary splits the cost")
+
 print(f"{len(failures)} failed")
 sys.exit(1 if failures else 0)

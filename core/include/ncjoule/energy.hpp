@@ -193,6 +193,7 @@ OperatingPoint operating_point_at(const std::vector<OperatingSegment>& trace, do
 struct EnergyOptions {
   std::optional<double> co2_kg_per_kwh; // overrides the profile's value
   std::optional<double> price_per_kwh;
+  std::optional<double> machine_rate_per_hour; // overrides the profile's
   std::optional<std::string> currency;
   // Flutes of each tool (by the number moves carry), where known: with a material that has
   // Kienzle's constants, the chip thickness (feed per tooth) corrects the cutting term.
@@ -231,7 +232,12 @@ struct EnergyResult {
   double mean_power_w = 0; // energy / duration
   double peak_power_w = 0;
   double co2_kg = 0;
+  // What the run costs: its electricity plus its time at the machine-hour rate (0 when no
+  // rate is given), in `currency`.
   double cost = 0;
+  double electricity_cost = 0;
+  double machine_cost = 0;
+  double machine_rate_per_hour = 0;
   std::string currency;
   ComponentValues components_j{};
   std::string model_description;

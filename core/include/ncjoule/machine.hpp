@@ -130,6 +130,10 @@ struct PowerConstants {
   double spindle_max_rpm = 0;
   double co2_kg_per_kwh = 0;
   double price_per_kwh = 0;
+  // What an hour of the machine costs the shop besides its electricity (depreciation, floor
+  // space, the operator: the machine-hour rate a quote is made with), in `currency`; 0: not
+  // counted.
+  double machine_rate_per_hour = 0;
   std::string currency = "EUR";
 };
 

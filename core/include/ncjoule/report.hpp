@@ -5,8 +5,11 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ncjoule/estimate.hpp"
@@ -33,6 +36,14 @@ std::string estimate_csv(const Estimate& estimate);
 // Comparing alternatives
 // ---------------------------------------------------------------------------------------------
 
+// One operation of a program, as compare matches it with the same-named one of another.
+struct OperationTotals {
+  std::string name;
+  double time_s = 0;
+  double energy_j = 0;
+  double cost = 0;
+};
+
 struct ProgramTotals {
   std::string file;
   double time_s = 0;
@@ -40,9 +51,11 @@ struct ProgramTotals {
   double removed_mm3 = 0;
   double sec_j_mm3 = 0;
   double co2_kg = 0;
-  double cost = 0;
+  double cost = 0;         // electricity plus machine time (EnergyResult::cost)
+  double machine_cost = 0; // the machine-hour rate's part of it
   std::string currency;
   ComponentValues components_j{};
+  std::vector<OperationTotals> operations;
   double air_cut_s = 0;       // feed moves that remove nothing
   bool volumes_known = false; // removal simulated with every tool described
   std::size_t setups = 1;     // clampings of the part (Estimate::setups)
@@ -50,8 +63,14 @@ struct ProgramTotals {
 };
 ProgramTotals program_totals(const Estimate& estimate);
 
+// What alternatives are ranked by: the least energy, the shortest time or the lowest cost
+// (electricity plus machine time) first.
+enum class RankBy : std::uint8_t { Energy, Time, Cost };
+std::optional<RankBy> parse_rank_by(std::string_view text); // "energy", "time", "cost"
+std::string_view rank_by_name(RankBy by);
+
 struct RankedProgram {
-  int rank = 0; // 1 = least energy
+  int rank = 0; // 1 = best by the ranking's measure
   ProgramTotals totals;
   // Differences to the best (rank 1): this minus best; percentages of the best's value (0 when
   // the best's value is 0).
@@ -61,13 +80,19 @@ struct RankedProgram {
   ComponentValues component_diff_j{};
 };
 
-// Ranks by energy, least first (ties: shorter time, then file name).
-std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs);
+// Ranks by `by`, least first (ties: the other of energy and time, then file name).
+std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs,
+                                         RankBy by = RankBy::Energy);
 
 // Why a program costs more (or less) than the best: the components whose energy differs most,
 // largest difference first, e.g. "axis_y +30.1 kJ, axis_x -20.4 kJ, cutting +2.0 kJ". Empty for
 // the best itself.
 std::string explain_difference(const RankedProgram& ranked, std::size_t max_components = 3);
+// The same by operation: the operations (matched with the best's by name) whose time, energy
+// or cost (by `by`) differs most, e.g. "2D Adaptive1 +41.0 s, Drill1 only here +12.3 s".
+// Empty for the best itself.
+std::string explain_by_operation(const RankedProgram& ranked, const RankedProgram& best, RankBy by,
+                                 std::size_t max_operations = 3);
 
 // The comparison as JSON (docs/report.md).
 // What makes a ranking doubtful: alternatives that remove different volumes (not the same part,
@@ -75,7 +100,7 @@ std::string explain_difference(const RankedProgram& ranked, std::size_t max_comp
 std::vector<std::string> comparison_warnings(const std::vector<RankedProgram>& ranked);
 
 std::string comparison_json(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
-                            int indent = 1);
+                            int indent = 1, RankBy by = RankBy::Energy);
 
 // ---------------------------------------------------------------------------------------------
 // Time series and the HTML report

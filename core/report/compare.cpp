@@ -36,6 +36,7 @@ ProgramTotals program_totals(const Estimate& e) {
   t.co2_kg = e.energy.co2_kg;
   t.cost = e.energy.cost;
   t.machine_cost = e.energy.machine_cost;
+  t.inch = e.inch;
   for (const OperationSummary& op : e.operations)
     t.operations.push_back({op.name, op.time_s, op.energy_j, op.cost});
   t.currency = e.energy.currency;

@@ -1,6 +1,7 @@
 // `ncjoule compare A.nc B.nc ... --machine PROFILE [--by energy|time|cost] [--json]`: estimates
 // alternatives of the same part on one machine and ranks them, with the difference of each to
 // the best and why, component by component and operation by operation (docs/report.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -89,18 +90,23 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
   std::printf("%zu alternatives on %s, %s first\n", ranked.size(), machine.name.c_str(), order);
   for (const std::string& warning : comparison_warnings(ranked))
     std::printf("warning: %s\n", warning.c_str());
+  // Inch programs compare in in^3 (and J/in^3), as their programmers read volumes.
+  const bool inch = std::all_of(ranked.begin(), ranked.end(),
+                                [](const RankedProgram& r) { return r.totals.inch; });
+  const double volume_unit = inch ? 16387.064 : 1.0; // mm^3 in one
   std::printf("\n #  %-*s %6s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n",
               static_cast<int>(width), "program", "setups", "time", "air cut", "energy kJ", "kWh",
-              "mm3", "SEC J/mm3", "CO2 g", ("cost " + currency).c_str(), "energy vs best",
-              "time vs best");
+              inch ? "in3" : "mm3", inch ? "SEC J/in3" : "SEC J/mm3", "CO2 g",
+              ("cost " + currency).c_str(), "energy vs best", "time vs best");
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const RankedProgram& r = ranked[i];
     const ProgramTotals& t = r.totals;
     const bool best = r.rank == 1;
-    std::printf("%2d  %-*s %6zu %10s %10s %10.2f %9.5f %9.0f %9.2f %9.2f %10.4f  %-22s %s\n",
+    std::printf("%2d  %-*s %6zu %10s %10s %10.2f %9.5f %9.*f %9.*f %9.2f %10.4f  %-22s %s\n",
                 r.rank, static_cast<int>(width), names[i].c_str(), t.setups, time_cells[i].c_str(),
-                air_cells[i].c_str(), t.energy_j / 1000, t.energy_j / 3.6e6, t.removed_mm3,
-                t.sec_j_mm3, t.co2_kg * 1000, t.cost,
+                air_cells[i].c_str(), t.energy_j / 1000, t.energy_j / 3.6e6, inch ? 3 : 0,
+                t.removed_mm3 / volume_unit, inch ? 0 : 2, t.sec_j_mm3 * volume_unit,
+                t.co2_kg * 1000, t.cost,
                 best ? "best"
                      : diff_text(r.energy_diff_j / 1000, r.energy_diff_pct, "kJ", 2).c_str(),
                 best ? "-" : diff_text(r.time_diff_s, r.time_diff_pct, "s", 1).c_str());

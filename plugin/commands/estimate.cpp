@@ -38,6 +38,9 @@ struct EstimateCliOptions {
 // Human summary
 // ---------------------------------------------------------------------------------------------
 
+// mm^3 in a cubic inch (25.4^3): an inch program's volumes are read in in^3.
+constexpr double kMm3PerIn3 = 16387.064;
+
 std::string clock_text(double seconds) {
   return duration_words(seconds);
 }
@@ -68,7 +71,14 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
   std::printf("  energy      %.4f kWh (%.1f kJ), mean power %.0f W, peak %.0f W\n",
               energy.energy_j / 3.6e6, energy.energy_j / 1000, energy.mean_power_w,
               energy.peak_power_w);
-  std::printf("  removed     %.0f mm^3, SEC %.2f J/mm^3\n", energy.removed_mm3, energy.sec_j_mm3);
+  if (e.inch) // an inch program's programmer reads in^3 and in^3/min; mm^3 follow for checking
+    std::printf("  removed     %.3f in^3 (%.0f mm^3), mean MRR %.3f in^3/min, SEC %.1f J/in^3 "
+                "(%.2f J/mm^3)\n",
+                energy.removed_mm3 / kMm3PerIn3, energy.removed_mm3,
+                e.time_s > 0 ? energy.removed_mm3 / kMm3PerIn3 / (e.time_s / 60) : 0.0,
+                energy.sec_j_mm3 * kMm3PerIn3, energy.sec_j_mm3);
+  else
+    std::printf("  removed     %.0f mm^3, SEC %.2f J/mm^3\n", energy.removed_mm3, energy.sec_j_mm3);
   if (energy.machine_cost > 0)
     std::printf("  CO2         %.4f kg, cost %.2f %s (machine time %.2f at %g/h, electricity "
                 "%.4f)\n",
@@ -95,14 +105,15 @@ void print_operations(const Estimate& e) {
     width = std::max(width, op.name.size());
   std::printf("  by operation:\n");
   std::printf("    %-*s %4s %5s %14s %14s %10s %10s %7s\n", static_cast<int>(width), "operation",
-              "tool", "line", "time", "air cutting", "mm^3", "kJ", "share");
+              "tool", "line", "time", "air cutting", e.inch ? "in^3" : "mm^3", "kJ", "share");
   for (const OperationSummary& op : ops) {
-    std::printf(
-        "    %-*s %4s %5s %14s %14s %10.0f %10.1f %6.1f%%\n", static_cast<int>(width),
-        op.name.c_str(), op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
-        op.line >= 0 ? std::to_string(op.line + 1).c_str() : "-", clock_text(op.time_s).c_str(),
-        e.removal ? clock_text(op.time.air_cut_s).c_str() : "-", op.removed_mm3, op.energy_j / 1000,
-        e.energy.energy_j > 0 ? 100 * op.energy_j / e.energy.energy_j : 0.0);
+    std::printf("    %-*s %4s %5s %14s %14s %10.*f %10.1f %6.1f%%\n", static_cast<int>(width),
+                op.name.c_str(), op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
+                op.line >= 0 ? std::to_string(op.line + 1).c_str() : "-",
+                clock_text(op.time_s).c_str(),
+                e.removal ? clock_text(op.time.air_cut_s).c_str() : "-", e.inch ? 3 : 0,
+                e.inch ? op.removed_mm3 / kMm3PerIn3 : op.removed_mm3, op.energy_j / 1000,
+                e.energy.energy_j > 0 ? 100 * op.energy_j / e.energy.energy_j : 0.0);
   }
 }
 
@@ -147,8 +158,9 @@ int run_estimate(const EstimateCliOptions& o) {
     if (e.setups.size() > 1)
       for (std::size_t k = 0; k < e.setups.size(); ++k) {
         const SetupSummary& s = e.setups[k];
-        std::printf("  setup %zu     from line %d (%s): %.1f s, %.1f kJ, %.0f mm^3\n", k + 1,
-                    s.first_line + 1, s.reason.c_str(), s.time_s, s.energy_j / 1e3, s.removed_mm3);
+        std::printf("  setup %zu     from line %d (%s): %.1f s, %.1f kJ, %.*f %s\n", k + 1,
+                    s.first_line + 1, s.reason.c_str(), s.time_s, s.energy_j / 1e3, e.inch ? 3 : 0,
+                    e.inch ? s.removed_mm3 / kMm3PerIn3 : s.removed_mm3, e.inch ? "in^3" : "mm^3");
         if (!s.stock.empty()) std::printf("              stock %s\n", s.stock.c_str());
       }
     print_operations(e);

@@ -197,5 +197,32 @@ for feed, warned in ((3000, True), (600, False)):
     said = any("placeholders" in m and "3000 mm/min" in m for m in messages)
     check(said == warned, f"F{feed} on the Zhou profile: placeholder rates said: {said} ({messages})")
 
+# An inch program's summary reads in in^3 and in^3/min (the mm^3 follow), its operations in
+# in^3; the JSON stays in SI. A 0.25 in slot 0.1 in deep along 2 in of a 3 x 1 x 0.5 in block:
+# about 0.25 * 0.1 * 2 = 0.05 in^3 plus the tool's round front.
+with tempfile.TemporaryDirectory() as tmp:
+    inch = os.path.join(tmp, "slot-inch.nc")
+    with open(inch, "w") as f:
+        f.write("%\nO1000 (SLOT)\n(T1 D=0.25 CR=0. - ZMIN=-0.1 - flat end mill)\nG20 G90 G17\n"
+                "T1 M6\nS8000 M3\n(SLOT1)\nG0 X-0.5 Y0.5 Z0.2\nG1 Z-0.1 F10.\nG1 X2. F20.\n"
+                "G0 Z0.2\nM5\nM30\n%\n")
+    box = "box:0in,0in,-0.5in,3in,1in,0in"
+    r = run("estimate", inch, "--stock", box, "--json")
+    doc = json.loads(r.stdout)
+    mm3 = doc["removed_mm3"]
+    in3 = mm3 / 25.4 ** 3
+    check(0.05 < in3 < 0.05 + 0.0125, f"the slot removes 0.05 in^3 and its front ({in3:.4f})")
+    r = run("estimate", inch, "--stock", box)
+    removed = [l for l in r.stdout.splitlines() if l.strip().startswith("removed")]
+    check(len(removed) == 1 and f"{in3:.3f} in^3 ({mm3:.0f} mm^3)" in removed[0]
+          and "in^3/min" in removed[0] and "J/in^3" in removed[0],
+          f"the summary in in^3, in^3/min and J/in^3 ({removed})")
+    rate = in3 / (doc["time_s"] / 60)
+    check(f"mean MRR {rate:.3f} in^3/min" in removed[0], f"mean MRR {rate:.3f} in^3/min")
+    check(" in^3 " in r.stdout.split("by operation:")[1].splitlines()[1],
+          "the operations' volume column is in in^3")
+    check("mm^3" in run("estimate", SAMPLE, "--machine", ZHOU, "--stock", STOCK).stdout,
+          "a mm program's summary stays in mm^3")
+
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

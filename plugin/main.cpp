@@ -8,6 +8,8 @@
 
 #include "command_registry.hpp"
 #include "ncjoule/log.hpp"
+#include "platform.hpp"
+#include "suggest.hpp"
 
 namespace ncjoule::cli {
 std::vector<SetupFunction>& registry() {
@@ -18,8 +20,12 @@ std::vector<SetupFunction>& registry() {
 
 int main(int argc, char** argv) {
   using namespace ncjoule::cli;
+  platform::start_console();
   CLI::App app{"ncjoule: predicts the time and energy of a CNC milling program before it runs"};
   app.require_subcommand(1);
+  // One command line on every system: CLI11 would take "/x" for an option on Windows, and a path
+  // such as /work/part.nc (which Windows reads on the current drive) would be lost.
+  app.allow_windows_style_options(false);
   app.set_version_flag("--version", std::string("ncjoule ") + NCJOULE_VERSION);
   bool verbose = false;
   app.add_flag("-v,--verbose", verbose, "Log what ncjoule does (to stderr)");
@@ -49,6 +55,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
+    if (code != 0)
+      if (const std::string hint = suggestion(app, e, argc, argv); !hint.empty())
+        std::cerr << "ncjoule: " << hint << '\n';
     return written(code == 0 ? kOk : kUsage);
   } catch (const std::bad_alloc&) {
     // The memory budget (--memory-limit) is checked before the large allocations: one that

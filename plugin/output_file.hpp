@@ -4,22 +4,31 @@
 // the C API).
 #pragma once
 
-#include <cerrno>
-#include <csignal>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <fcntl.h>
 #include <string>
 #include <string_view>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "command_registry.hpp"
 #include "ncjoule/diagnostic.hpp"
 
+#ifndef _WIN32
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
 namespace ncjoule::cli {
 
+#ifdef _WIN32
+// Windows (output_file_windows.cpp, part of libncjoule): the same contract with the Windows API,
+// a rename over the target that replaces it as one step (ReplaceFileW, MoveFileExW) and the
+// temporary file removed on Ctrl-C and Ctrl-Break by a console control handler.
+std::string write_output_file(const std::string& target, std::string_view text);
+#else
 namespace output_file_detail {
 
 inline std::string reason() {
@@ -168,6 +177,7 @@ inline std::string write_output_file(const std::string& target, std::string_view
   if (!error.empty()) ::unlink(temp.c_str());
   return error;
 }
+#endif
 
 // Writes a rewritten program where the command line says: over `file` when `in_place`, else to
 // `output` ("" or "-": standard output). Returns the exit code, after saying why on failure.

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <unistd.h>
+
+#include "platform.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -11,19 +12,13 @@ namespace {
 constexpr int kBarWidth = 24;
 constexpr auto kRedraw = std::chrono::milliseconds(100);
 
-bool stderr_is_terminal() {
-  if (!isatty(STDERR_FILENO)) return false;
-  const char* term = std::getenv("TERM");
-  return !(term && std::string(term) == "dumb");
-}
-
 } // namespace
 
 ProgressBar::ProgressBar(std::string what, std::size_t total)
     : what_(std::move(what)), total_(total), start_(std::chrono::steady_clock::now()) {
   const char* setting = std::getenv("NCJOULE_PROGRESS");
   lines_ = setting && std::string(setting) == "lines";
-  enabled_ = !lines_ && stderr_is_terminal() && !(setting && std::string(setting) == "0");
+  enabled_ = !lines_ && platform::stderr_is_terminal() && !(setting && std::string(setting) == "0");
   if (const char* delay = std::getenv("NCJOULE_PROGRESS_DELAY_MS"))
     delay_ = std::chrono::milliseconds(std::atol(delay));
   if (enabled_) thread_ = std::thread([this] { run(); });

@@ -6,9 +6,9 @@
 #include <iostream>
 #include <sstream>
 #include <toml++/toml.h>
-#include <unistd.h>
 
 #include "cli_support.hpp"
+#include "platform.hpp"
 
 #include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
@@ -23,10 +23,14 @@ std::string env(const char* name) {
   return value ? value : "";
 }
 
+using platform::path_from_utf8;
+using platform::utf8_from_path;
+
 // A path from a file, relative to that file's folder.
 std::string relative_to(const std::string& file, const std::string& path) {
-  if (path.empty() || fs::path(path).is_absolute()) return path;
-  return (fs::path(file).parent_path() / path).lexically_normal().string();
+  if (path.empty() || path_from_utf8(path).is_absolute()) return path;
+  return utf8_from_path(
+      (path_from_utf8(file).parent_path() / path_from_utf8(path)).lexically_normal());
 }
 
 bool is_file(const fs::path& p) {
@@ -34,24 +38,26 @@ bool is_file(const fs::path& p) {
   return fs::is_regular_file(p, ec);
 }
 
-// The folder ncjoule runs from (/proc/self/exe), empty when it cannot be told.
+bool is_file(const std::string& p) {
+  return is_file(path_from_utf8(p));
+}
+
+// The folder ncjoule runs from, empty when it cannot be told.
 fs::path program_folder() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
+  return platform::program_file().parent_path();
 }
 
 } // namespace
 
 std::string user_config_path() {
   if (const char* named = std::getenv("NCJOULE_CONFIG")) return named;
-  std::string base = env("XDG_CONFIG_HOME");
-  if (base.empty()) {
-    const std::string home = env("HOME");
-    if (home.empty()) return {};
-    base = home + "/.config";
-  }
-  return base + "/ncjoule/config.toml";
+  const std::string folder = platform::user_config_folder();
+  if (folder.empty()) return {};
+#ifdef _WIN32
+  return folder + "\\config.toml";
+#else
+  return folder + "/config.toml";
+#endif
 }
 
 std::optional<UserConfig> parse_user_config(std::string_view text, const std::string& path,
@@ -96,7 +102,12 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
       continue;
     }
     std::string value = *node.value<std::string>();
-    if (key->is_path) value = relative_to(path, value);
+    // A machine named by a shipped profile's name ("haas-vf2") stays a name for -m's lookup;
+    // a file beside the config, or a path, is a path.
+    const bool bare_name = key->field == &UserConfig::machine &&
+                           value.find_first_of("/\\") == std::string::npos &&
+                           !is_file(relative_to(path, value));
+    if (key->is_path && !bare_name) value = relative_to(path, value);
     if (key->field == &UserConfig::stock) {
       // The value's first character is just after the opening quote.
       config.stock_origin = {path, int(where.line), int(where.column) + 1};
@@ -121,7 +132,8 @@ const std::optional<UserConfig>& user_config() {
     // device too, within the settings files' size limit), so that a wrong one is said.
     const bool named = std::getenv("NCJOULE_CONFIG") != nullptr;
     std::error_code ec;
-    if (path.empty() || (named ? !fs::exists(path, ec) : !is_file(path))) return UserConfig{};
+    if (path.empty() || (named ? !fs::exists(path_from_utf8(path), ec) : !is_file(path)))
+      return UserConfig{};
     std::vector<Diagnostic> diagnostics;
     const std::optional<std::string> text =
         read_text_file(path, "a user config (TOML)", diagnostics);
@@ -136,16 +148,16 @@ const std::optional<UserConfig>& user_config() {
 
 std::string program_job_file(const std::string& program) {
   if (program.empty() || program == "-") return {};
-  fs::path job(program);
+  fs::path job = path_from_utf8(program);
   job.replace_extension(".ncjoule.toml");
-  return is_file(job) ? job.string() : std::string();
+  return is_file(job) ? utf8_from_path(job) : std::string();
 }
 
 std::string program_stock_file(const std::string& program) {
   if (program.empty() || program == "-") return {};
-  fs::path stock(program);
+  fs::path stock = path_from_utf8(program);
   stock.replace_extension(".stock");
-  return is_file(stock) ? stock.string() : std::string();
+  return is_file(stock) ? utf8_from_path(stock) : std::string();
 }
 
 std::vector<std::string> machine_profile_dirs() {
@@ -153,7 +165,8 @@ std::vector<std::string> machine_profile_dirs() {
   if (const std::string data = env("NCJOULE_DATA_DIR"); !data.empty())
     dirs.push_back(data + "/machines");
   const fs::path here = program_folder();
-  if (!here.empty()) dirs.push_back((here.parent_path() / "share/ncjoule/machines").string());
+  if (!here.empty())
+    dirs.push_back(utf8_from_path(here.parent_path() / "share" / "ncjoule" / "machines"));
 #ifdef NCJOULE_SOURCE_MACHINES_DIR
   dirs.push_back(NCJOULE_SOURCE_MACHINES_DIR); // running from the build folder
 #endif
@@ -164,16 +177,17 @@ std::map<std::string, std::string> shipped_profiles() {
   std::map<std::string, std::string> found;
   for (const std::string& dir : machine_profile_dirs()) {
     std::error_code ec;
-    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    for (fs::directory_iterator it(path_from_utf8(dir), ec), end; !ec && it != end;
+         it.increment(ec))
       if (it->path().extension() == ".toml" && it->is_regular_file(ec))
-        found.emplace(it->path().stem().string(), it->path().string());
+        found.emplace(utf8_from_path(it->path().stem()), utf8_from_path(it->path()));
   }
   return found;
 }
 
 std::string resolve_machine(const std::string& name) {
   std::error_code ec;
-  if (name.empty() || fs::exists(name, ec) || name.find('/') != std::string::npos ||
+  if (name.empty() || fs::exists(path_from_utf8(name), ec) || name.find('/') != std::string::npos ||
       name.find('\\') != std::string::npos)
     return name;
   std::string wanted = to_lower(name);
@@ -191,7 +205,7 @@ std::string resolve_machine(const std::string& name) {
 
 std::string default_machine_profile() {
   for (const std::string& dir : machine_profile_dirs())
-    if (is_file(fs::path(dir) / "generic-3axis.toml")) return dir + "/generic-3axis.toml";
+    if (is_file(dir + "/generic-3axis.toml")) return dir + "/generic-3axis.toml";
   return {};
 }
 

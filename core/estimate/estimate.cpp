@@ -6,8 +6,16 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#ifdef _WIN32
+#define WIN32_LEAN_AND_MEAN
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#include <windows.h> // GlobalMemoryStatusEx
+#else
 #include <sys/resource.h>
 #include <unistd.h>
+#endif
 
 #include "cam_stock.hpp"
 #include "long_arc_check.hpp"
@@ -211,6 +219,12 @@ std::string program_memory_problem(std::size_t bytes, std::size_t lines, std::si
 
 std::size_t default_memory_budget_bytes() {
   std::size_t budget = kDefaultRemovalMemoryBudget;
+#ifdef _WIN32
+  // A quarter of the physical memory (Windows has no ulimit -v to halve).
+  MEMORYSTATUSEX status{};
+  status.dwLength = sizeof status;
+  if (GlobalMemoryStatusEx(&status)) budget = std::size_t(status.ullTotalPhys / 4);
+#else
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   if (pages > 0 && page > 0) budget = std::size_t(pages) * std::size_t(page) / 4;
   for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
@@ -218,6 +232,7 @@ std::size_t default_memory_budget_bytes() {
     if (getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
       budget = std::min(budget, std::size_t(limit.rlim_cur / 2));
   }
+#endif
   return budget;
 }
 

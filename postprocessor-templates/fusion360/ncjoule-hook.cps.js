@@ -13,7 +13,8 @@
   What it adds to the post:
   - five properties (kept if the post already has properties of the same names):
       ncjouleEnable     annotate the output (on/off)
-      ncjoulePath       the ncjoule program ("ncjoule" finds it on the PATH)
+      ncjoulePath       the ncjoule program ("ncjoule" finds it on the PATH; on Windows also
+                        in the install folders, as ncjoule.exe)
       ncjouleMachine    the machine profile (.toml); a relative path is looked up next to the post
       ncjouleStock      a stock in place of the setup's workpiece, as ncjoule's --stock text
                         (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an .stl file); empty: the
@@ -230,6 +231,53 @@ function ncjouleIsFile(path) {
 
 function ncjouleHasFolder(path) {
   return /[\\\/]/.test(path);
+}
+
+// A value of the environment, where the post engine gives it (getEnvironmentVariable()); "" else.
+function ncjouleEnvironment(name) {
+  try {
+    if (typeof getEnvironmentVariable == "function") {
+      return String(getEnvironmentVariable(name) || "");
+    }
+  } catch (e) {
+    // not available: as if unset
+  }
+  return "";
+}
+
+// The ncjoule program to run. A path (with a folder) is used as given. A bare name (the default
+// "ncjoule") on Windows is looked for as NAME.exe in the folders of the PATH, then in the install
+// folders the Windows README names (%LOCALAPPDATA%\Programs\ncjoule\bin, then
+// %ProgramFiles%\ncjoule\bin): a program that starts ncjoule by name need not search for it the
+// way a command prompt does. Elsewhere, and when none is found, the name is given to execute()
+// as it is.
+function ncjouleFindProgram(program) {
+  if (ncjouleHasFolder(program) || !ncjouleOnWindows() ||
+      typeof FileSystem == "undefined" || !FileSystem || typeof FileSystem.isFile != "function") {
+    return program;
+  }
+  var name = /\.[A-Za-z0-9]+$/.test(program) ? program : program + ".exe";
+  var folders = ncjouleEnvironment("PATH").split(";");
+  var local = ncjouleEnvironment("LOCALAPPDATA");
+  if (local) {
+    folders.push(local + "\\Programs\\ncjoule\\bin");
+  }
+  folders.push((ncjouleEnvironment("ProgramFiles") || "C:\\Program Files") + "\\ncjoule\\bin");
+  for (var i = 0; i < folders.length; ++i) {
+    var folder = folders[i].replace(/"/g, "").replace(/[\\\/]+$/, "");
+    if (!folder) {
+      continue;
+    }
+    var candidate = folder + "\\" + name;
+    try {
+      if (FileSystem.isFile(candidate)) {
+        return candidate;
+      }
+    } catch (e) {
+      // an unreadable folder: the next one
+    }
+  }
+  return program;
 }
 
 // The profile as given, or next to the post when the given path is relative and found there.
@@ -493,7 +541,7 @@ function ncjouleAnnotateOutputs() {
     return;
   }
   try {
-    var program = String(ncjouleProperty("ncjoulePath") || "ncjoule");
+    var program = ncjouleFindProgram(String(ncjouleProperty("ncjoulePath") || "ncjoule"));
     var profile = String(ncjouleProperty("ncjouleMachine") || "");
     if (!profile) {
       ncjouleWarning("no machine profile set (property ncjouleMachine); the output is not annotated");

@@ -1,0 +1,207 @@
+// write_output_file (output_file.hpp) on Windows: the text goes to a temporary file next to the
+// target, flushed to disk, which then replaces the target in one step, so that a failure or a
+// Ctrl-C never leaves a half-written program. POSIX's rename() over an open or read-only file
+// works differently on Windows, hence the Windows API throughout:
+//  - ReplaceFileW keeps the replaced file's attributes and security (as the POSIX code keeps
+//    its permissions and owner); where it cannot (some network shares, FAT), MoveFileExW with
+//    MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH replaces it all the same;
+//  - a console control handler (SetConsoleCtrlHandler, Windows' SIGINT) removes the temporary
+//    file on Ctrl-C, Ctrl-Break or the console closing, then lets the program end as it would;
+//  - paths are UTF-8 in ncjoule and UTF-16 for the system (platform::widen).
+#include "output_file.hpp"
+
+#include "platform.hpp"
+
+#define WIN32_LEAN_AND_MEAN
+#ifndef NOMINMAX
+#define NOMINMAX
+#endif
+#include <windows.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstring>
+#include <cwchar>
+#include <iterator>
+
+namespace ncjoule::cli {
+namespace {
+
+using platform::widen;
+
+std::string last_error() {
+  return platform::error_message(GetLastError());
+}
+
+bool write_all(HANDLE handle, std::string_view text) {
+  while (!text.empty()) {
+    const DWORD chunk = DWORD(std::min<std::size_t>(text.size(), std::size_t(1) << 30));
+    DWORD written = 0;
+    if (!WriteFile(handle, text.data(), chunk, &written, nullptr)) return false;
+    text.remove_prefix(written);
+  }
+  return true;
+}
+
+// Devices (NUL, CON, COM1, pipes) cannot be replaced by a rename: they are written in place.
+std::string write_in_place(const std::wstring& path, const std::string& target,
+                           std::string_view text) {
+  const HANDLE handle = CreateFileW(path.c_str(), GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_WRITE,
+                                    nullptr, OPEN_EXISTING, 0, nullptr);
+  if (handle == INVALID_HANDLE_VALUE) return "cannot open " + target + ": " + last_error();
+  const bool written = write_all(handle, text);
+  const std::string why = written ? std::string() : last_error();
+  CloseHandle(handle);
+  if (!written) return "cannot write " + target + ": " + why;
+  return {};
+}
+
+// The temporary file being written, removed by the console control handler. The handler runs on
+// a thread of its own while the write goes on: the name is a fixed buffer, published by a flag.
+wchar_t pending_temp[32768] = {};
+std::atomic<bool> has_pending_temp{false};
+
+BOOL WINAPI remove_pending_temp(DWORD) {
+  // The file is open (with FILE_SHARE_DELETE): deleting it now removes it when the program ends.
+  if (has_pending_temp.load()) DeleteFileW(pending_temp);
+  return FALSE; // and the next handler (by default: end the program) runs
+}
+
+class PendingTemp {
+public:
+  explicit PendingTemp(const std::wstring& path) {
+    if (path.size() >= std::size(pending_temp)) return;
+    std::wmemcpy(pending_temp, path.c_str(), path.size() + 1);
+    has_pending_temp.store(true);
+    installed_ = SetConsoleCtrlHandler(remove_pending_temp, TRUE) != 0;
+  }
+  ~PendingTemp() {
+    if (installed_) SetConsoleCtrlHandler(remove_pending_temp, FALSE);
+    has_pending_temp.store(false);
+  }
+  PendingTemp(const PendingTemp&) = delete;
+  PendingTemp& operator=(const PendingTemp&) = delete;
+
+private:
+  bool installed_ = false;
+};
+
+// What is at `path` now.
+struct Existing {
+  bool exists = false;
+  bool directory = false;
+  bool device = false;
+  DWORD links = 1;
+};
+
+Existing look_at(const std::wstring& path) {
+  Existing e;
+  // FILE_FLAG_BACKUP_SEMANTICS opens folders too; symbolic links are followed.
+  const HANDLE handle = CreateFileW(path.c_str(), FILE_READ_ATTRIBUTES,
+                                    FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                                    OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+  if (handle == INVALID_HANDLE_VALUE) {
+    const DWORD error = GetLastError();
+    // Something that cannot be looked at (no access) is there: the rename will tell.
+    e.exists = error != ERROR_FILE_NOT_FOUND && error != ERROR_PATH_NOT_FOUND &&
+               error != ERROR_INVALID_NAME;
+    return e;
+  }
+  e.exists = true;
+  if (GetFileType(handle) != FILE_TYPE_DISK) {
+    e.device = true;
+  } else if (BY_HANDLE_FILE_INFORMATION info{}; GetFileInformationByHandle(handle, &info)) {
+    e.directory = (info.dwFileAttributes & FILE_ATTRIBUTE_DIRECTORY) != 0;
+    e.links = info.nNumberOfLinks;
+  }
+  CloseHandle(handle);
+  return e;
+}
+
+// The file a symbolic link names, as \\?\C:\... (which the wide API takes); empty when `path`
+// is not a link or cannot be resolved.
+std::wstring link_target(const std::wstring& path) {
+  const DWORD attributes = GetFileAttributesW(path.c_str());
+  if (attributes == INVALID_FILE_ATTRIBUTES || !(attributes & FILE_ATTRIBUTE_REPARSE_POINT))
+    return {};
+  const HANDLE handle =
+      CreateFileW(path.c_str(), 0, FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                  OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+  if (handle == INVALID_HANDLE_VALUE) return {};
+  std::wstring final_path(MAX_PATH, L'\0');
+  DWORD n = GetFinalPathNameByHandleW(handle, final_path.data(), DWORD(final_path.size()), 0);
+  if (n >= final_path.size()) {
+    final_path.resize(n + 1);
+    n = GetFinalPathNameByHandleW(handle, final_path.data(), DWORD(final_path.size()), 0);
+  }
+  CloseHandle(handle);
+  if (n == 0 || n >= final_path.size()) return {};
+  final_path.resize(n);
+  return final_path;
+}
+
+} // namespace
+
+std::string write_output_file(const std::string& target, std::string_view text) {
+  if (target == "-") {
+    if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
+      return "cannot write to standard output: " + std::string(std::strerror(errno));
+    return {};
+  }
+  // A symbolic link keeps pointing where it did: the file it names is replaced.
+  std::wstring path = widen(target);
+  if (std::wstring real = link_target(path); !real.empty()) path = real;
+  const Existing existing = look_at(path);
+  if (existing.directory) return "cannot write " + target + ": it is a directory";
+  if (existing.device) return write_in_place(path, target, text);
+  // Replacing a file with other names would leave them with the old text: said, not done.
+  if (existing.exists && existing.links > 1)
+    return "cannot replace " + target + ": it has " + std::to_string(existing.links) +
+           " hard links, which would keep the old text (write to another file with -o)";
+
+  // The temporary file: ".NAME.ncjoule-XXXXXX" in the target's folder (a rename within one
+  // volume is what replaces a file in one step).
+  const std::size_t slash = path.find_last_of(L"\\/");
+  const std::wstring folder = slash == std::wstring::npos ? L"" : path.substr(0, slash + 1);
+  const std::wstring base = slash == std::wstring::npos ? path : path.substr(slash + 1);
+  std::wstring temp;
+  HANDLE handle = INVALID_HANDLE_VALUE;
+  static std::atomic<unsigned> counter{0};
+  for (int attempt = 0; attempt < 100 && handle == INVALID_HANDLE_VALUE; ++attempt) {
+    wchar_t suffix[16];
+    std::swprintf(suffix, std::size(suffix), L"%06x",
+                  unsigned(GetTickCount64() * 2654435761u ^ GetCurrentProcessId() * 40503u ^
+                           counter.fetch_add(1) * 2246822519u) &
+                      0xffffffu);
+    temp = folder + L"." + base + L".ncjoule-" + suffix;
+    handle = CreateFileW(temp.c_str(), GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_DELETE, nullptr,
+                         CREATE_NEW, FILE_ATTRIBUTE_NORMAL, nullptr);
+    if (handle == INVALID_HANDLE_VALUE && GetLastError() != ERROR_FILE_EXISTS &&
+        GetLastError() != ERROR_ALREADY_EXISTS)
+      break;
+  }
+  if (handle == INVALID_HANDLE_VALUE)
+    return "cannot write " + target + ": cannot create a file in " +
+           (folder.empty() ? std::string(".") : platform::narrow(folder)) + ": " + last_error();
+  const PendingTemp pending(temp);
+  std::string error;
+  if (!write_all(handle, text))
+    error = "cannot write " + target + ": " + last_error();
+  else if (!FlushFileBuffers(handle))
+    error = "cannot write " + target + ": " + last_error();
+  if (!CloseHandle(handle) && error.empty()) error = "cannot write " + target + ": " + last_error();
+  if (error.empty()) {
+    const bool replaced = existing.exists && ReplaceFileW(path.c_str(), temp.c_str(), nullptr,
+                                                          REPLACEFILE_IGNORE_MERGE_ERRORS |
+                                                              REPLACEFILE_IGNORE_ACL_ERRORS,
+                                                          nullptr, nullptr);
+    if (!replaced && !MoveFileExW(temp.c_str(), path.c_str(),
+                                  MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+      error = "cannot replace " + target + ": " + last_error();
+  }
+  if (!error.empty()) DeleteFileW(temp.c_str());
+  return error;
+}
+
+} // namespace ncjoule::cli

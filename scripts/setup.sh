@@ -13,6 +13,9 @@ packages=(
   freecad-python3               # freecadcmd: scripts/make_freecad_samples.py (FreeCAD's posts)
   chromium                      # headless browser: the HTML report's screenshot test
   nodejs                        # node: runs the Fusion 360 post hook under test (tests/hooks)
+  # The Debian package (scripts/package.sh, scripts/test-package.sh): dpkg-deb, dpkg-shlibdeps
+  # for its Depends, man pages from --help, a fresh Debian 12 root to install it in, its lint.
+  dpkg-dev help2man debootstrap lintian
 )
 
 sudo_cmd=()

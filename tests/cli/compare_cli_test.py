@@ -232,5 +232,15 @@ check(abs(ops - total) <= 1e-9 * total, f"operations' costs add up to the total 
 r = run("estimate", X, "--machine", HAAS, "--stock", stock, "--machine-rate", "90")
 check("machine time" in r.stdout and "/h" in r.stdout, "the summary splits the cost")
 
+# A misspelt command or option gets the name nearest it, and still exits 1 (usage).
+for args, hint in [(["estimat", X], "did you mean 'estimate'?"),
+                   (["comapre", X, Y], "did you mean 'compare'?"),
+                   (["estimate", X, "--stok", stock], "'--stok' is no option of estimate; did you mean '--stock'?"),
+                   (["compare", X, Y, "--bye", "time"], "did you mean '--by'?")]:
+    r = run(*args)
+    check(r.returncode == 1 and hint in r.stderr, f"{' '.join(args[:1])}...: {hint} ({r.stderr[-120:]!r})")
+r = run("frobnicate", X)
+check(r.returncode == 1 and "did you mean" not in r.stderr, "nothing near 'frobnicate': no guess")
+
 print(f"{len(failures)} failed")
 sys.exit(1 if failures else 0)

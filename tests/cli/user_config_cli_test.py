@@ -77,6 +77,11 @@ try:
         check(doc["machine"]["name"].startswith("Haas VF-0"), "the config's machine is used")
         check("no machine profile given" not in r.stderr, "no note when the config names one")
         check("-10.000" in doc["stock"] and "(given)" in doc["stock"], f"the config's stock ({doc['stock']})")
+    # A shipped profile named by its name, as -m takes it, and not a file beside the config.
+    by_name = write(os.path.join(work, "cfg", "by-name.toml"), 'machine = "haas-vf0-pavanaskar2014"\n')
+    r, doc = estimate(part, config=by_name)
+    check(r.returncode == 0 and doc is not None and doc["machine"]["name"].startswith("Haas VF-0"),
+          f"machine = a shipped profile's name finds it ({r.stderr[-200:]!r})")
     r2, doc2 = estimate(part, "--machine", GENERIC, config=config)
     check(doc2 and doc2["machine"]["name"] == "Generic 3-axis VMC", "--machine wins over the config")
 

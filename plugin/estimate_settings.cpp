@@ -102,10 +102,21 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(finite_between(0, 1e7));
 }
 
-bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
+bool load_machine(const EstimateSettings& s, MachineProfile& machine, const std::string& program) {
   const auto& config = user_config();
   if (!config) return false;
-  std::string path = resolve_machine(s.machine.empty() ? config->machine : s.machine);
+  // The job's machine comes between the command line's and the user config's, as its stock does.
+  std::string job_machine;
+  if (s.machine.empty()) {
+    const std::string job = !s.job.empty() ? s.job : program_job_file(program);
+    if (!job.empty()) {
+      std::vector<Diagnostic> ignored; // estimate_options reads the job again and reports
+      if (const auto read = read_job_file(job, ignored)) job_machine = read->machine;
+    }
+  }
+  std::string path = resolve_machine(!s.machine.empty()     ? s.machine
+                                     : !job_machine.empty() ? job_machine
+                                                            : config->machine);
   if (path.empty()) {
     path = default_machine_profile();
     if (path.empty()) {
@@ -119,7 +130,7 @@ bool load_machine(const EstimateSettings& s, MachineProfile& machine) {
   }
   try {
     machine = load_profile(path);
-    machine.by_default = s.machine.empty() && config->machine.empty();
+    machine.by_default = s.machine.empty() && job_machine.empty() && config->machine.empty();
     return true;
   } catch (const ProfileError& e) {
     print_diagnostics({e.diagnostic()});

@@ -43,9 +43,11 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
 std::size_t memory_budget_bytes(const EstimateSettings& settings);
 std::size_t input_limit_bytes(const EstimateSettings& settings);
 
-// Loads the machine profile: --machine, else the user config's, else the generic one (with a
-// note); prints why and returns false when it is wrong.
-bool load_machine(const EstimateSettings& settings, MachineProfile& machine);
+// Loads the machine profile: --machine, else the one the job file of `program` names (--job, or
+// PROGRAM.ncjoule.toml), else the user config's, else the generic one (with a note); prints why
+// and returns false when it is wrong.
+bool load_machine(const EstimateSettings& settings, MachineProfile& machine,
+                  const std::string& program = "");
 
 // The pipeline's options for one program ("-": standard input) from the settings, completed from
 // the program's own files and the user config (user_config.hpp). Tools: the job file's, then the

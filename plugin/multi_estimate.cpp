@@ -12,7 +12,8 @@ namespace ncjoule::cli {
 int estimate_files(const std::vector<std::string>& files, const EstimateSettings& s,
                    MachineProfile& machine, std::vector<EstimatedProgram>& programs) {
   int status = kOk;
-  if (!load_machine(s, machine)) return kInputError;
+  // One machine for all: the first program's job file may name it.
+  if (!load_machine(s, machine, files.empty() ? std::string() : files.front())) return kInputError;
 
   // Read everything first, so that a missing file or a bad setting is reported before minutes of
   // estimating. Each program has its options: its own job and stock files.

@@ -172,7 +172,8 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
   for (const auto& [key, value] : document)
     if (key.str() != "stock" && key.str() != "stock_stl" && key.str() != "tool" &&
         key.str() != "material" && key.str() != "units" && key.str() != "setup" &&
-        key.str() != "work_offsets_mm" && key.str() != "cutter_compensation")
+        key.str() != "work_offsets_mm" && key.str() != "cutter_compensation" &&
+        key.str() != "machine")
       reader.say(Severity::Warning, &value, std::string(key.str()), "unknown key, ignored");
 
   // The unit of the stock's values written without one; none: the program's (G20/G21).
@@ -243,6 +244,17 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
       reader.error(mode, "cutter_compensation",
                    "must be \"control\" (G41/G42 offset the part contour) or \"wear\" (the "
                    "path is the tool centre)");
+  }
+  if (const toml::node* machine = document.get("machine")) {
+    const std::optional<std::string> name = machine->value<std::string>();
+    if (!machine->is_string() || name->empty())
+      reader.error(machine, "machine",
+                   "must name a machine profile (a shipped one's name, or a .toml file)");
+    else if (name->find_first_of("/\\") == std::string::npos &&
+             !(name->size() > 5 && name->compare(name->size() - 5, 5, ".toml") == 0))
+      job.machine = *name; // a shipped profile's name: no folder, no .toml
+    else
+      job.machine = reader.resolve(*name);
   }
   if (const toml::node* material = document.get("material")) {
     if (!material->is_string() || !find_material(*material->value<std::string>()))

@@ -44,7 +44,7 @@ int run_annotate(const AnnotateCliOptions& o) {
   const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
   if (!options) return status;
   MachineProfile machine;
-  if (!load_machine(o.settings, machine)) return kInputError;
+  if (!load_machine(o.settings, machine, o.file)) return kInputError;
   // A file replaced in place must be one no other program is still writing.
   FileStamp stamp;
   if (o.in_place) {

@@ -124,7 +124,7 @@ int run_estimate(const EstimateCliOptions& o) {
   const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
   if (!options) return status;
   MachineProfile machine;
-  if (!load_machine(o.settings, machine)) return kInputError;
+  if (!load_machine(o.settings, machine, o.file)) return kInputError;
   auto source = read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!source) return kInputError;
 

@@ -82,6 +82,27 @@ try:
     r, doc = estimate(part, config=by_name)
     check(r.returncode == 0 and doc is not None and doc["machine"]["name"].startswith("Haas VF-0"),
           f"machine = a shipped profile's name finds it ({r.stderr[-200:]!r})")
+    # A job file beside the program names its machine: it wins over the user config's, and
+    # --machine wins over it. A name finds a shipped profile, a .toml is a file beside the job.
+    jobdir = os.path.join(work, "job")
+    os.mkdir(jobdir)
+    jpart = write(os.path.join(jobdir, "jpart.nc"), PROGRAM)
+    job = write(os.path.join(jobdir, "jpart.ncjoule.toml"), 'machine = "haas-vf0-pavanaskar2014"\n')
+    r, doc = estimate(jpart, config=by_name.replace("by-name", "no-such"))
+    check(r.returncode == 0 and doc and doc["machine"]["name"].startswith("Haas VF-0")
+          and "no machine profile given" not in r.stderr,
+          f"the job file's machine (a name) is used ({r.stderr[-200:]!r})")
+    shutil.copy(GENERIC, os.path.join(jobdir, "shop-mill.toml"))
+    write(job, 'machine = "shop-mill.toml"\n')
+    r, doc = estimate(jpart, config=by_name)
+    check(r.returncode == 0 and doc and doc["machine"]["name"] == "Generic 3-axis VMC",
+          f"the job file's machine (a file beside it) wins over the config's ({r.stderr[-200:]!r})")
+    r, doc = estimate(jpart, "--machine", HAAS, config=by_name)
+    check(doc and doc["machine"]["name"].startswith("Haas VF-0"), "--machine wins over the job's")
+    write(job, 'machine = 3\n')
+    r, doc = estimate(jpart)
+    check(r.returncode == 2 and "machine" in r.stderr and "jpart.ncjoule.toml:1" in r.stderr,
+          f"a job's machine that is no name is an error at its line ({r.stderr[-200:]!r})")
     r2, doc2 = estimate(part, "--machine", GENERIC, config=config)
     check(doc2 and doc2["machine"]["name"] == "Generic 3-axis VMC", "--machine wins over the config")
 

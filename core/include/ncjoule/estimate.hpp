@@ -74,6 +74,7 @@ struct EstimateOptions {
 //   stock = "box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX"   (or an .stl path)   or   stock_stl = "x.stl"
 //   units = "mm" | "in"   (of the stock's values written without a unit; default: the program's)
 //   material = "aluminium-alloy"                  (the workpiece: material.hpp)
+//   machine = "haas-vf2" | "mill.toml"            (a shipped profile's name, or a profile file)
 //   [[setup]]  stock = ... or stock_stl = ..., name = "..."   (one per setup of the program, in
 //              order, in place of the top-level stock: setups.hpp says where a setup begins)
 //   [work_offsets_mm]  G54 = [X, Y, Z], G55 = ...  (machine coordinates of each origin)
@@ -90,6 +91,9 @@ struct JobFile {
   std::map<int, Pose> work_offsets; // [work_offsets_mm]: G54 = [X, Y, Z], ... (1..9)
   std::optional<CutterCompMode> cutter_compensation; // "control" | "wear"
   std::string material;                              // empty: the job names none
+  // The machine: a shipped profile's name as -m takes it, or a profile file (resolved against
+  // the job file's folder); empty: the job names none.
+  std::string machine;
   std::map<int, Tool> tools;
 };
 // Parses the text of a job file that lives at `path`. Errors (file, line, column, key and what

@@ -28,9 +28,7 @@ namespace {
 
 using platform::widen;
 
-std::string last_error() {
-  return platform::error_message(GetLastError());
-}
+using platform::last_error_message;
 
 constexpr DWORD kShareAll = FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE;
 
@@ -97,14 +95,14 @@ std::string in_place_refusal(const std::string& file, bool follow_symlinks, File
   const std::string path = printable(file);
   const std::wstring wide = widen(file);
   const DWORD attributes = GetFileAttributesW(wide.c_str());
-  if (attributes == INVALID_FILE_ATTRIBUTES) return path + ": " + last_error();
+  if (attributes == INVALID_FILE_ATTRIBUTES) return path + ": " + last_error_message();
   if ((attributes & FILE_ATTRIBUTE_REPARSE_POINT) && !follow_symlinks) {
     const std::string target = final_path_of(wide);
     return path + " is a symbolic link (to " + (target.empty() ? "elsewhere" : printable(target)) +
            "): --in-place replaces only the file given; add --follow-symlinks to replace the "
            "file it points to, or write elsewhere with -o";
   }
-  if (!stamp_of(wide, stamp)) return path + ": " + last_error();
+  if (!stamp_of(wide, stamp)) return path + ": " + last_error_message();
   const DWORD kind = GetFileAttributesW(wide.c_str()); // of the link's target, when followed
   const HANDLE probe = CreateFileW(wide.c_str(), 0, kShareAll, nullptr, OPEN_EXISTING,
                                    FILE_FLAG_BACKUP_SEMANTICS, nullptr);
@@ -124,7 +122,8 @@ std::string in_place_changed(const std::string& file, const FileStamp& read, boo
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
     FileStamp now;
-    if (!stamp_of(wide, now)) return path + " changed while ncjoule read it: " + last_error();
+    if (!stamp_of(wide, now))
+      return path + " changed while ncjoule read it: " + last_error_message();
     if (!(now == read))
       return path + " changed while ncjoule read it (another program is writing it?): run "
                     "ncjoule again once it is finished";

@@ -30,9 +30,7 @@ namespace {
 
 using platform::widen;
 
-std::string last_error() {
-  return platform::error_message(GetLastError());
-}
+using platform::last_error_message;
 
 bool write_all(HANDLE handle, std::string_view text) {
   while (!text.empty()) {
@@ -49,9 +47,9 @@ std::string write_in_place(const std::wstring& path, const std::string& target,
                            std::string_view text) {
   const HANDLE handle = CreateFileW(path.c_str(), GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_WRITE,
                                     nullptr, OPEN_EXISTING, 0, nullptr);
-  if (handle == INVALID_HANDLE_VALUE) return "cannot open " + target + ": " + last_error();
+  if (handle == INVALID_HANDLE_VALUE) return "cannot open " + target + ": " + last_error_message();
   const bool written = write_all(handle, text);
-  const std::string why = written ? std::string() : last_error();
+  const std::string why = written ? std::string() : last_error_message();
   CloseHandle(handle);
   if (!written) return "cannot write " + target + ": " + why;
   return {};
@@ -183,14 +181,16 @@ std::string write_output_file(const std::string& target, std::string_view text) 
   }
   if (handle == INVALID_HANDLE_VALUE)
     return "cannot write " + target + ": cannot create a file in " +
-           (folder.empty() ? std::string(".") : platform::narrow(folder)) + ": " + last_error();
+           (folder.empty() ? std::string(".") : platform::narrow(folder)) + ": " +
+           last_error_message();
   const PendingTemp pending(temp);
   std::string error;
   if (!write_all(handle, text))
-    error = "cannot write " + target + ": " + last_error();
+    error = "cannot write " + target + ": " + last_error_message();
   else if (!FlushFileBuffers(handle))
-    error = "cannot write " + target + ": " + last_error();
-  if (!CloseHandle(handle) && error.empty()) error = "cannot write " + target + ": " + last_error();
+    error = "cannot write " + target + ": " + last_error_message();
+  if (!CloseHandle(handle) && error.empty())
+    error = "cannot write " + target + ": " + last_error_message();
   if (error.empty()) {
     const bool replaced = existing.exists && ReplaceFileW(path.c_str(), temp.c_str(), nullptr,
                                                           REPLACEFILE_IGNORE_MERGE_ERRORS |
@@ -198,7 +198,7 @@ std::string write_output_file(const std::string& target, std::string_view text) 
                                                           nullptr, nullptr);
     if (!replaced && !MoveFileExW(temp.c_str(), path.c_str(),
                                   MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
-      error = "cannot replace " + target + ": " + last_error();
+      error = "cannot replace " + target + ": " + last_error_message();
   }
   if (!error.empty()) DeleteFileW(temp.c_str());
   return error;

@@ -44,6 +44,8 @@ std::string narrow(std::wstring_view utf16);
 // The system's message for a Windows error code (GetLastError()), in UTF-8, without the final
 // period and line end.
 std::string error_message(unsigned long code);
+// The same for the calling thread's last error (GetLastError()).
+std::string last_error_message();
 // The file of the program or DLL that holds `address`; empty when it cannot be told.
 std::string module_file_of(const void* address);
 // Whether the process's code page is UTF-8 (the manifest is honoured: Windows 10 1903 and later).

@@ -72,6 +72,10 @@ std::string error_message(unsigned long code) {
   return message.empty() ? "Windows error " + std::to_string(code) : message;
 }
 
+std::string last_error_message() {
+  return error_message(GetLastError());
+}
+
 void start_console() {
   // Text mode would turn the program's LF into CR LF on the way out, and CR LF into LF and ^Z
   // into an end of file on the way in: the annotated bytes must be the program's own.

@@ -27,31 +27,8 @@ sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 
 # Each stage is timed; the times are printed at the end (and when a stage fails).
-stage_names=()
-stage_times=()
-stage_start=0
-stage() {
-  stage_end
-  stage_names+=("$1")
-  stage_start=$(date +%s.%N)
-  echo "== $1" >&2
-}
-stage_end() {
-  if [ "${#stage_names[@]}" -gt "${#stage_times[@]}" ]; then
-    stage_times+=("$(echo "$(date +%s.%N) - $stage_start" | bc)")
-  fi
-}
-print_times() {
-  stage_end
-  echo "build-windows.sh stage times:" >&2
-  local total=0 k
-  for k in "${!stage_times[@]}"; do
-    printf '  %-44s %7.1f s\n' "${stage_names[$k]}" "${stage_times[$k]}" >&2
-    total=$(echo "$total + ${stage_times[$k]}" | bc)
-  done
-  printf '  %-44s %7.1f s\n' "total" "$total" >&2
-}
-trap print_times EXIT
+. scripts/lib.sh # (the folder is the repository's root here)
+trap 'print_stage_times build-windows.sh' EXIT
 
 stage "Debian packages"
 # The cross compiler, the tools apt-get source needs, zip; the header-only libraries come from
@@ -62,15 +39,7 @@ packages=(
   cmake ninja-build zip bc
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
 )
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ "${#missing[@]}" -gt 0 ]; then
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update
-  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+install_packages "${packages[@]}"
 cc=x86_64-w64-mingw32-gcc-posix
 cxx=x86_64-w64-mingw32-g++-posix
 

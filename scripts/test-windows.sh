@@ -20,33 +20,10 @@ mkdir -p "$out"
 out=$(cd "$out" && pwd)
 corpus=${1:+$(cd "$1" && pwd)}
 
-sudo_cmd=()
-if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-
-stage_names=()
-stage_times=()
-stage_start=0
-stage() {
-  stage_end
-  stage_names+=("$1")
-  stage_start=$(date +%s.%N)
-  echo "== $1" >&2
-}
-stage_end() {
-  if [ "${#stage_names[@]}" -gt "${#stage_times[@]}" ]; then
-    stage_times+=("$(echo "$(date +%s.%N) - $stage_start" | bc)")
-  fi
-}
+. scripts/lib.sh # (the folder is the repository's root here)
 results=()
 print_summary() {
-  stage_end
-  echo "test-windows.sh stage times:" >&2
-  local total=0 k
-  for k in "${!stage_times[@]}"; do
-    printf '  %-48s %7.1f s\n' "${stage_names[$k]}" "${stage_times[$k]}" >&2
-    total=$(echo "$total + ${stage_times[$k]}" | bc)
-  done
-  printf '  %-48s %7.1f s\n' "total" "$total" >&2
+  print_stage_times test-windows.sh
   if [ "${#results[@]}" -gt 0 ]; then
     echo "test-windows.sh results:" >&2
     printf '  %s\n' "${results[@]}" >&2
@@ -57,15 +34,7 @@ trap print_summary EXIT
 
 stage "Debian packages"
 packages=(wine wine64 python3 nodejs unzip bc cmake ninja-build)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ "${#missing[@]}" -gt 0 ]; then
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update
-  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
-fi
+install_packages "${packages[@]}"
 
 stage "Linux build to compare with"
 if [ -x build/plugin/ncjoule ]; then

@@ -38,18 +38,14 @@ std::vector<Point3> pocket_path(double step) {
       corners.push_back({forward ? x1 : x0, y, z});
       forward = !forward;
     }
-    corners.push_back({corners.back().x, corners.back().y, 5}); // retract
+    corners.push_back({corners.back().x(), corners.back().y(), 5}); // retract
   }
   std::vector<Point3> path{{40 + 4, 30, 5}};
   for (const Point3& c : corners) {
     const Point3 a = path.back();
-    const double len = std::sqrt((c.x - a.x) * (c.x - a.x) + (c.y - a.y) * (c.y - a.y) +
-                                 (c.z - a.z) * (c.z - a.z));
-    const int n = std::max(1, int(std::ceil(len / step)));
-    for (int k = 1; k <= n; ++k) {
-      const double u = double(k) / n;
-      path.push_back({a.x + u * (c.x - a.x), a.y + u * (c.y - a.y), a.z + u * (c.z - a.z)});
-    }
+    const int n = std::max(1, int(std::ceil((c - a).norm() / step)));
+    for (int k = 1; k <= n; ++k)
+      path.push_back(a + (double(k) / n) * (c - a));
   }
   return path;
 }

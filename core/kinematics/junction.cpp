@@ -13,7 +13,7 @@ double junction_speed(const MoveLimits& before, const MoveLimits& after, PathMod
   // Moves of rotary axes only have no direction in space: stop, as their tangents are unknown.
   if (before.rotary_only || after.rotary_only) return 0;
 
-  const double cos_turn = std::clamp(dot(before.dir_out, after.dir_in), -1.0, 1.0);
+  const double cos_turn = std::clamp(before.dir_out.dot(after.dir_in), -1.0, 1.0);
   if (cos_turn >= 1 - 1e-12) return cap; // straight on
   if (cos_turn <= -1 + 1e-12) return 0;  // reversal
   // Blend arc tangent to both moves whose middle stays within `tolerance` of the corner: with

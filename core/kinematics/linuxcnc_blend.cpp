@@ -11,24 +11,9 @@
 
 namespace ncjoule::kinematics_detail::linuxcnc {
 
-Vec3 operator+(const Vec3& a, const Vec3& b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-Vec3 operator-(const Vec3& a, const Vec3& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-Vec3 operator*(double k, const Vec3& a) {
-  return {k * a.x, k * a.y, k * a.z};
-}
-Vec3 cross(const Vec3& a, const Vec3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double norm(const Vec3& a) {
-  return std::sqrt(dot(a, a));
-}
 Vec3 unit(const Vec3& a) {
-  const double n = norm(a);
-  return n > 0 ? (1 / n) * a : Vec3{};
+  const double n = a.norm();
+  return n > 0 ? Vec3((1 / n) * a) : Vec3::Zero();
 }
 
 namespace {
@@ -138,7 +123,7 @@ bool settle_tangent(Segment& prev, Segment& next, const AxisBounds& bounds) {
   const Vec3 u1 = prev.end_tangent(), u2 = next.start_tangent();
   const double sharp = kPi * kSharpCornerDeg / 180;
   const Vec3 sum = u1 + u2;
-  if (dot(sum, sum) < sharp * sharp) {
+  if (sum.squaredNorm() < sharp * sharp) {
     set_term(prev, next, Term::Stop);
     return true;
   }
@@ -148,8 +133,7 @@ bool settle_tangent(Segment& prev, Segment& next, const AxisBounds& bounds) {
   const Vec3 diff = a_inst * (u2 - u1);
   double scale = 0;
   for (int i = 0; i < 3; ++i)
-    if (component(bounds.accel, i) != 0)
-      scale = std::max(scale, std::abs(component(diff, i) / component(bounds.accel, i)));
+    if (bounds.accel[i] != 0) scale = std::max(scale, std::abs(diff[i] / bounds.accel[i]));
   if (prev.shape == Shape::Circle || next.shape == Shape::Circle) scale /= kTangentialAccelRatio;
   if (scale < kKinkRatio) {
     set_term(prev, next, Term::Tangent);
@@ -172,7 +156,7 @@ void finalize_segment(Segment& s) {
   const double dr = c.spiral / c.angle;
   const double inner = dr * dr + c.radius * c.radius;
   const double r_spiral = std::sqrt(inner * inner * inner) / (inner + dr * dr);
-  const double radius = dot(c.r_helix, c.r_helix) / r_spiral + r_spiral;
+  const double radius = c.r_helix.squaredNorm() / r_spiral + r_spiral;
   const double a_normal_max = kNormalAccelRatio * a;
   const double a_normal = s.maxvel * s.maxvel / std::max(radius, 1e-300);
   if (a_normal > a_normal_max) {
@@ -195,7 +179,7 @@ Vec3 Circle::point(double phi) const {
 
 Vec3 Circle::tangent(double phi) const {
   const Vec3 r = point(phi) - centre;
-  Vec3 t = cross(normal, r);
+  Vec3 t = normal.cross(r);
   if (angle != 0) t = t + (1 / angle) * r_helix + (spiral / angle) * unit(r);
   return unit(t);
 }

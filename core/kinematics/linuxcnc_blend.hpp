@@ -48,18 +48,16 @@ inline constexpr double kStartupTolerance_mm = 0.0254;
 // (measured: 2.6 to 4.6 ms).
 inline constexpr double kTaskLatency_s = 0.003;
 
-Vec3 operator+(const Vec3& a, const Vec3& b);
-Vec3 operator-(const Vec3& a, const Vec3& b);
-Vec3 operator*(double k, const Vec3& a);
-Vec3 cross(const Vec3& a, const Vec3& b);
-double norm(const Vec3& a);
-Vec3 unit(const Vec3& a); // zero stays zero
+// The unit vector along a; zero stays zero. Scaled by the reciprocal of the length, as
+// posemath's pmCartUnit does (not divided: the last bit differs).
+Vec3 unit(const Vec3& a);
 
 // A circle, helix or planar spiral as LinuxCNC describes one (posemath's PmCircle): the point at
 // angle phi is centre + (radius + spiral * phi / angle) * (cos phi, sin phi in the plane of
 // r_tan and r_perp, normalised) + r_helix * phi / angle.
 struct Circle {
-  Vec3 centre, normal, r_tan, r_perp, r_helix;
+  Vec3 centre = Vec3::Zero(), normal = Vec3::Zero(), r_tan = Vec3::Zero(), r_perp = Vec3::Zero(),
+       r_helix = Vec3::Zero();
   double radius = 0, spiral = 0, angle = 0;
 
   Vec3 point(double phi) const;
@@ -72,13 +70,14 @@ enum class Shape : std::uint8_t { Line, Circle, Blend };
 // One segment of LinuxCNC's queue, with what its timing depends on.
 struct Segment {
   Shape shape = Shape::Line;
-  Vec3 start, end, direction; // lines: current end points (after trimming), unit direction
-  Circle circle;              // circles
-  double length = 0;          // current length (LinuxCNC's target)
-  double nominal = 0;         // length as programmed
-  double reqvel = 0;          // requested speed: the feed, at most maxvel
-  double maxvel = 0;          // highest speed the machine allows along it
-  double accel = 0;           // path acceleration limit before the reductions below
+  Vec3 start = Vec3::Zero(), end = Vec3::Zero(),
+       direction = Vec3::Zero(); // lines: current end points (after trimming), unit direction
+  Circle circle;                 // circles
+  double length = 0;             // current length (LinuxCNC's target)
+  double nominal = 0;            // length as programmed
+  double reqvel = 0;             // requested speed: the feed, at most maxvel
+  double maxvel = 0;             // highest speed the machine allows along it
+  double accel = 0;              // path acceleration limit before the reductions below
   double acc_ratio_tan = kTangentialAccelRatio; // circles and blend arcs
   double tolerance = 0;                         // G64 P; 0 = none given
   double kink_vel = -1;                         // speed cap at a kink into the next; < 0 none
@@ -102,8 +101,8 @@ struct Segment {
 };
 
 struct AxisBounds {
-  Vec3 accel; // per-axis acceleration limits (mm/s^2)
-  Vec3 vel;   // per-axis speed limits (mm/s)
+  Vec3 accel = Vec3::Zero(); // per-axis acceleration limits (mm/s^2)
+  Vec3 vel = Vec3::Zero();   // per-axis speed limits (mm/s)
 };
 
 // The outcome of joining `prev` to `next`.

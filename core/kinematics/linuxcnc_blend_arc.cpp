@@ -9,7 +9,9 @@ namespace ncjoule::kinematics_detail::linuxcnc {
 namespace {
 
 struct Geometry { // BlendGeom3
-  Vec3 u1, u2, u_tan1, u_tan2, p, normal, binormal, centre1, centre2;
+  Vec3 u1 = Vec3::Zero(), u2 = Vec3::Zero(), u_tan1 = Vec3::Zero(), u_tan2 = Vec3::Zero(),
+       p = Vec3::Zero(), normal = Vec3::Zero(), binormal = Vec3::Zero(), centre1 = Vec3::Zero(),
+       centre2 = Vec3::Zero();
   double radius1 = 0, radius2 = 0, theta_tan = 0;
 };
 
@@ -38,7 +40,7 @@ bool init_geometry(Geometry& g, const Segment& prev, const Segment& next) {
                                     : next.circle.point(0);
   g.theta_tan = intersection_angle(g.u_tan1, g.u_tan2);
   if (kPi / 2 - g.theta_tan < kAngleEpsilon || g.theta_tan < kAngleEpsilon) return false;
-  g.binormal = unit(cross(g.u_tan1, g.u_tan2));
+  g.binormal = unit(g.u_tan1.cross(g.u_tan2));
   g.normal = unit(g.u_tan2 - g.u_tan1);
   return true;
 }
@@ -46,7 +48,7 @@ bool init_geometry(Geometry& g, const Segment& prev, const Segment& next) {
 // Local circle through P fitted to a spiral (findSpiralApproximation).
 void spiral_fit(const Circle& c, const Vec3& p, const Vec3& u_tan, Vec3& centre, double& radius) {
   centre = c.centre + (c.spiral / c.angle) * u_tan;
-  radius = norm(p - centre);
+  radius = (p - centre).norm();
 }
 
 // blendParamKinematics: the tolerance, the acceleration and speed limits in the blend's plane.
@@ -67,7 +69,7 @@ bool kinematics(Geometry& g, Parameters& q, const Segment& prev, const Segment& 
     // The altitude of the triangle of the two speed vectors: the fastest a vector turning from
     // one to the other may be without leaving either segment's limit.
     const double area = v_max1 * v_max2 / 2 * std::sin(q.phi);
-    const double base = norm(v_max2 * g.u2 - v_max1 * g.u1);
+    const double base = (v_max2 * g.u2 - v_max1 * g.u1).norm();
     if (base > 0) v_max_alt = 2 * area / base;
   }
   q.v_goal = std::min(q.v_goal, std::max(v_max_alt, v_planar_max));
@@ -96,7 +98,7 @@ bool compute_parameters(Parameters& q) {
 
 // Angle between the directions from a circle's centre to P and to the blend arc's centre.
 double trim_angle(const Vec3& p, const Vec3& arc_centre, const Vec3& centre) {
-  return std::acos(std::clamp(dot(unit(p - centre), unit(arc_centre - centre)), -1.0, 1.0));
+  return std::acos(std::clamp(unit(p - centre).dot(unit(arc_centre - centre)), -1.0, 1.0));
 }
 
 // Where a blend arc of radius R touching a line meets a circle (blendLineArcPostProcess and
@@ -105,9 +107,9 @@ bool line_circle_fit(const Geometry& g, const Parameters& q, const Vec3& u_line,
                      const Vec3& circle_centre, double circle_radius, bool convex, double& d_line,
                      Vec3& arc_centre) {
   const double d = (convex ? -q.r_plan : q.r_plan) + circle_radius;
-  const Vec3 n = unit(cross(g.binormal, u_line));
+  const Vec3 n = unit(g.binormal.cross(u_line));
   const Vec3 r_pc = circle_centre - g.p;
-  const double c_u = dot(r_pc, u_line) * along, c_n = dot(r_pc, n);
+  const double c_u = r_pc.dot(u_line) * along, c_n = r_pc.dot(n);
   const double b = 2 * c_u, c = c_u * c_u - d * d + (q.r_plan - c_n) * (q.r_plan - c_n);
   const double disc = b * b - 4 * c;
   if (disc < 0) return false;
@@ -115,17 +117,17 @@ bool line_circle_fit(const Geometry& g, const Parameters& q, const Vec3& u_line,
   d_line = std::min(std::abs((-b + root) / 2), std::abs((-b - root) / 2));
   const Vec3 r = (along * -d_line) * u_line + q.r_plan * n;
   arc_centre = g.p + r;
-  return norm(r) - q.r_plan <= q.tolerance;
+  return r.norm() - q.r_plan <= q.tolerance;
 }
 
 // Trims a circle to `new_angle`, from its start or its end (pmCircleStretch); helices refuse.
 bool stretch(Circle& c, double new_angle, bool from_start) {
-  if (new_angle <= 1e-10 || dot(c.r_helix, c.r_helix) > 1e-6) return false;
+  if (new_angle <= 1e-10 || c.r_helix.squaredNorm() > 1e-6) return false;
   if (from_start) {
     const Vec3 new_start = c.point(c.angle - new_angle);
     c.r_tan = new_start - c.centre;
-    c.r_perp = cross(c.normal, c.r_tan);
-    c.radius = norm(c.r_tan);
+    c.r_perp = c.normal.cross(c.r_tan);
+    c.radius = c.r_tan.norm();
   }
   c.spiral *= new_angle / c.angle;
   c.angle = new_angle;
@@ -134,28 +136,28 @@ bool stretch(Circle& c, double new_angle, bool from_start) {
 
 double circle_length(const Circle& c) {
   const double planar = (c.radius + c.spiral / 2) * c.angle;
-  return std::sqrt(planar * planar + dot(c.r_helix, c.r_helix));
+  return std::sqrt(planar * planar + c.r_helix.squaredNorm());
 }
 
 // The spherical arc through two points around a centre: its angle, radius and the unit tangent
 // at either end (arcInitFromPoints, arcTangent), for the tangency check against a circle.
 struct BlendArc {
   double radius = 0, angle = 0;
-  Vec3 r_start, r_end;
+  Vec3 r_start = Vec3::Zero(), r_end = Vec3::Zero();
 };
 bool arc_from_points(BlendArc& a, const Vec3& start, const Vec3& end, const Vec3& centre) {
   a.r_start = start - centre;
   a.r_end = end - centre;
-  const double r0 = norm(a.r_start), r1 = norm(a.r_end);
+  const double r0 = a.r_start.norm(), r1 = a.r_end.norm();
   if (r0 < 1e-12 || r1 < 1e-12) return false;
   a.radius = r0;
-  a.angle = std::acos(std::clamp(dot((1 / r0) * a.r_start, (1 / r1) * a.r_end), -1.0, 1.0));
+  a.angle = std::acos(std::clamp(((1 / r0) * a.r_start).dot((1 / r1) * a.r_end), -1.0, 1.0));
   return a.angle >= kMinArcAngle;
 }
 Vec3 arc_tangent(const BlendArc& a, const Vec3& binormal, bool at_end) {
   const Vec3 r = at_end ? a.r_end : a.r_start;
-  const double dr = (norm(a.r_end) - norm(a.r_start)) / a.angle;
-  return unit(cross(binormal, r) + dr * unit(r));
+  const double dr = (a.r_end.norm() - a.r_start.norm()) / a.angle;
+  return unit(binormal.cross(r) + dr * unit(r));
 }
 
 // checkTangentAngle: the blend arc must meet the circle within the kink one servo cycle allows.
@@ -163,7 +165,7 @@ bool tangent_ok(const Circle& c, const BlendArc& a, const Vec3& binormal, const 
                 bool at_end) {
   const Vec3 u_arc = arc_tangent(a, binormal, at_end);
   const Vec3 u_circ = at_end ? c.tangent(0) : c.tangent(c.angle);
-  const double angle = std::acos(std::clamp(dot(u_circ, u_arc), -1.0, 1.0));
+  const double angle = std::acos(std::clamp(u_circ.dot(u_arc), -1.0, 1.0));
   const double max_angle =
       kNormalAccelRatio * kKinkFactor * q.a_max / (q.v_plan / kCycle_s); // findMaxTangentAngle
   return angle <= max_angle;
@@ -211,7 +213,7 @@ bool line_arc(ArcAttempt& at, const Segment& prev, const Segment& next, const Ax
   if (!init_geometry(g, prev, next)) return false;
   const Circle& c2 = next.circle;
   spiral_fit(c2, g.p, g.u_tan2, g.centre2, g.radius2);
-  q.convex2 = dot(g.p - g.centre2, g.u_tan1) >= 0;
+  q.convex2 = (g.p - g.centre2).dot(g.u_tan1) >= 0;
   q.phi2_max = std::min(c2.angle / 3, q.convex2 ? g.theta_tan : kPi / 2);
   q.theta = g.theta_tan;
   if (q.convex2) {
@@ -224,7 +226,7 @@ bool line_arc(ArcAttempt& at, const Segment& prev, const Segment& next, const Ax
   if (!parallel_units(g.binormal, c2.normal)) return false;
   if (!compute_parameters(q)) return false;
   double d_line = 0;
-  Vec3 centre;
+  Vec3 centre = Vec3::Zero();
   if (!line_circle_fit(g, q, g.u1, 1, g.centre2, g.radius2, q.convex2, d_line, centre))
     return false;
   at.points.trim1 = d_line;
@@ -248,7 +250,7 @@ bool arc_line(ArcAttempt& at, const Segment& prev, const Segment& next, const Ax
   if (!init_geometry(g, prev, next)) return false;
   const Circle& c1 = prev.circle;
   spiral_fit(c1, g.p, g.u_tan1, g.centre1, g.radius1);
-  q.convex1 = dot(g.p - g.centre1, g.u_tan2) < 0;
+  q.convex1 = (g.p - g.centre1).dot(g.u_tan2) < 0;
   q.phi1_max = std::min(c1.angle * 2 / 3, q.convex1 ? g.theta_tan : kPi / 2);
   q.theta = g.theta_tan;
   if (q.convex1) {
@@ -261,7 +263,7 @@ bool arc_line(ArcAttempt& at, const Segment& prev, const Segment& next, const Ax
   if (!parallel_units(g.binormal, c1.normal)) return false;
   if (!compute_parameters(q)) return false;
   double d_line = 0;
-  Vec3 centre;
+  Vec3 centre = Vec3::Zero();
   if (!line_circle_fit(g, q, g.u2, -1, g.centre1, g.radius1, q.convex1, d_line, centre))
     return false;
   at.points.trim1 = trim_angle(g.p, centre, g.centre1);
@@ -286,8 +288,8 @@ bool arc_arc(ArcAttempt& at, const Segment& prev, const Segment& next, const Axi
   spiral_fit(c1, g.p, g.u_tan1, g.centre1, g.radius1);
   spiral_fit(c2, g.p, g.u_tan2, g.centre2, g.radius2);
   g.p = c2.point(0);
-  q.convex1 = dot(g.p - g.centre1, g.u_tan2) < 0;
-  q.convex2 = dot(g.p - g.centre2, g.u_tan1) >= 0;
+  q.convex1 = (g.p - g.centre1).dot(g.u_tan2) < 0;
+  q.convex2 = (g.p - g.centre2).dot(g.u_tan1) >= 0;
   q.phi1_max = std::min(c1.angle * 2 / 3, q.convex1 ? g.theta_tan : kPi / 2);
   q.phi2_max = std::min(c2.angle / 3, q.convex2 ? g.theta_tan : kPi / 2);
   q.theta = g.theta_tan;
@@ -310,20 +312,20 @@ bool arc_arc(ArcAttempt& at, const Segment& prev, const Segment& next, const Axi
   const double d1 = (q.convex1 ? -q.r_plan : q.r_plan) + g.radius1;
   const double d2 = (q.convex2 ? -q.r_plan : q.r_plan) + g.radius2;
   const Vec3 c1c2 = g.centre2 - g.centre1;
-  const double span = norm(c1c2);
+  const double span = c1c2.norm();
   if (!(span > 0)) return false;
   const double cx = (-d1 * d1 + d2 * d2 - span * span) / (-2 * span);
   const double cy2 = d1 * d1 - cx * cx;
   if (!(cy2 >= 0)) return false;
   double cy = std::sqrt(cy2);
   const Vec3 uc = (1 / span) * c1c2;
-  Vec3 nc = cross(g.binormal, uc);
-  if (dot(g.normal, nc) < 0) nc = -1.0 * nc;
+  Vec3 nc = g.binormal.cross(uc);
+  if (g.normal.dot(nc) < 0) nc = -1.0 * nc;
   nc = unit(nc);
   const Vec3 r_pc1 = g.centre1 - g.p;
-  if (norm(r_pc1 + cx * uc - cy * nc) < norm(r_pc1 + cx * uc + cy * nc)) cy = -cy;
+  if ((r_pc1 + cx * uc - cy * nc).norm() < (r_pc1 + cx * uc + cy * nc).norm()) cy = -cy;
   const Vec3 centre = g.centre1 + cx * uc + cy * nc;
-  if (norm(centre - g.p) - q.r_plan > q.tolerance) return false;
+  if ((centre - g.p).norm() - q.r_plan > q.tolerance) return false;
   at.points.trim1 = trim_angle(g.p, centre, g.centre1);
   at.points.trim2 = trim_angle(g.p, centre, g.centre2);
   if (at.points.trim1 > q.phi1_max || at.points.trim2 > q.phi2_max) return false;
@@ -368,7 +370,7 @@ void apply_blend_arc(Segment& prev, Segment& next, const ArcAttempt& at) {
   }
   if (next.shape == Shape::Line) {
     next.start = next.start + at.points.trim2 * next.direction;
-    next.length = norm(next.end - next.start);
+    next.length = (next.end - next.start).norm();
   } else {
     next.circle = at.circle2;
     next.length = circle_length(next.circle);

@@ -10,7 +10,7 @@ namespace ncjoule::kinematics_detail::linuxcnc {
 
 // Where the arc meets the two segments, and how much it takes off each.
 struct BlendPoints { // BlendPoints3
-  Vec3 arc_start, arc_end, arc_centre;
+  Vec3 arc_start = Vec3::Zero(), arc_end = Vec3::Zero(), arc_centre = Vec3::Zero();
   double trim1 = 0, trim2 = 0;
 };
 

@@ -21,10 +21,6 @@ inline constexpr double kMinBlendCosAngle = 1e-3; // TP_MIN_ARC_ANGLE in tpCompu
 inline constexpr double kMaxFeedScale = 1.0;      // [DISPLAY] MAX_FEED_OVERRIDE
 inline constexpr double kKinkFactor = 0.25;       // BLEND_KINK_FACTOR
 
-inline double component(const Vec3& v, int i) {
-  return i == 0 ? v.x : i == 1 ? v.y : v.z;
-}
-
 // Speed the segment may reach at full feed override (tcGetMaxTargetVel).
 inline double max_target_vel(const Segment& s) {
   return std::min(s.reqvel * kMaxFeedScale, s.maxvel);
@@ -32,7 +28,7 @@ inline double max_target_vel(const Segment& s) {
 
 // Half the angle between the directions (findIntersectionAngle): pi/2 straight on, 0 reversal.
 inline double intersection_angle(const Vec3& u1, const Vec3& u2) {
-  return std::acos(std::clamp(-dot(u1, u2), -1.0, 1.0)) / 2;
+  return std::acos(std::clamp(-u1.dot(u2), -1.0, 1.0)) / 2;
 }
 
 // The largest circle centred on the origin inside the box of per-axis bounds, cut by the plane
@@ -41,9 +37,9 @@ inline double intersection_angle(const Vec3& u1, const Vec3& u2) {
 inline double inscribed_bound(const Vec3& normal, const Vec3& bounds) {
   double result = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 3; ++i) {
-    const double b = component(bounds, i);
+    const double b = bounds[i];
     if (b == 0) continue;
-    const double n = component(normal, i);
+    const double n = normal[i];
     const double scale = std::max(std::sqrt(std::max(0.0, 1 - n * n)), kPosEpsilon);
     result = std::min(result, b / scale);
   }
@@ -53,7 +49,7 @@ inline double inscribed_bound(const Vec3& normal, const Vec3& bounds) {
 inline bool parallel_units(const Vec3& a, const Vec3& b) {
   const Vec3 d = a - b, s = a + b;
   const double tol = kAngleEpsilon * kAngleEpsilon;
-  return dot(d, d) < tol || dot(s, s) < tol;
+  return d.squaredNorm() < tol || s.squaredNorm() < tol;
 }
 
 inline void set_term(Segment& prev, Segment& next, Term term) {

@@ -14,13 +14,9 @@ Vec3 xyz(const Pose& p) {
   return {p.x, p.y, p.z};
 }
 
-double get(const Vec3& v, int i) {
-  return i == 0 ? v.x : i == 1 ? v.y : v.z;
-}
-
 Vec3 axis_vector(int i, double value) {
-  Vec3 v;
-  (i == 0 ? v.x : i == 1 ? v.y : v.z) = value;
+  Vec3 v = Vec3::Zero();
+  v[i] = value;
   return v;
 }
 
@@ -302,10 +298,10 @@ Segment PathBuilder::circle_segment(const CanonCommand& c) const {
   const ArcGeometry g = arc_geometry(c);
   const auto [first, second, normal_axis] = plane_axes(c.plane);
   const Vec3 start = xyz(c.start), end = xyz(c.end);
-  const double axial = get(end, normal_axis) - get(start, normal_axis);
+  const double axial = end[normal_axis] - start[normal_axis];
   Vec3 centre = start; // the centre in the start's plane
-  (first == 0 ? centre.x : first == 1 ? centre.y : centre.z) = c.centre_first;
-  (second == 0 ? centre.x : second == 1 ? centre.y : centre.z) = c.centre_second;
+  centre[first] = c.centre_first;
+  centre[second] = c.centre_second;
 
   Segment s;
   s.shape = Shape::Circle;
@@ -313,10 +309,10 @@ Segment PathBuilder::circle_segment(const CanonCommand& c) const {
   k.centre = centre;
   k.normal = axis_vector(normal_axis, g.sweep >= 0 ? 1.0 : -1.0);
   k.r_tan = start - centre;
-  k.r_perp = cross(k.normal, k.r_tan);
-  k.radius = norm(k.r_tan);
+  k.r_perp = k.normal.cross(k.r_tan);
+  k.radius = k.r_tan.norm();
   const Vec3 end_in_plane = end - centre - axis_vector(normal_axis, axial);
-  k.spiral = norm(end_in_plane) - k.radius;
+  k.spiral = end_in_plane.norm() - k.radius;
   k.angle = std::abs(g.sweep);
   k.r_helix = axis_vector(normal_axis, axial);
   s.start = start;
@@ -337,7 +333,7 @@ Segment PathBuilder::circle_segment(const CanonCommand& c) const {
   // Time and "acceleration time" the chord needs on the axes (getStraightVelocity/Acceleration).
   double t_motion = 0, tt_motion = 0;
   for (int i = 0; i < 3; ++i) {
-    const double d = std::abs(get(end, i) - get(start, i));
+    const double d = std::abs(end[i] - start[i]);
     if (d < 1e-9) continue;
     t_motion = std::max(t_motion, d / axes[i].max_feed_mm_s);
     tt_motion = std::max(tt_motion, d / axes[i].accel_mm_s2);

@@ -36,9 +36,9 @@ double axis_speed_limit(const AxisLimits& a, bool rapid) {
 }
 
 Vec3 normalised(Vec3 v) {
-  const double n = std::sqrt(dot(v, v));
-  if (n <= 0) return {};
-  return {v.x / n, v.y / n, v.z / n};
+  const double n = v.norm();
+  if (n <= 0) return Vec3::Zero();
+  return v / n;
 }
 
 // Plane axes as indices into (x, y, z): first, second and normal, as in arc_geometry.
@@ -57,17 +57,13 @@ std::array<int, 3> plane_axes(Plane plane) {
 double component(const Pose& p, int axis) {
   return axis == 0 ? p.x : axis == 1 ? p.y : p.z;
 }
-void set_component(Vec3& v, int axis, double value) {
-  (axis == 0 ? v.x : axis == 1 ? v.y : v.z) = value;
-}
-
 // Tangent of an arc at angle phi around its centre: d(point)/d(sweep fraction).
 Vec3 arc_tangent(const CanonCommand& arc, const ArcGeometry& g, double phi) {
   const auto [first, second, normal] = plane_axes(arc.plane);
-  Vec3 t;
-  set_component(t, first, -g.radius * g.sweep * std::sin(phi));
-  set_component(t, second, g.radius * g.sweep * std::cos(phi));
-  set_component(t, normal, g.axial);
+  Vec3 t = Vec3::Zero();
+  t[first] = -g.radius * g.sweep * std::sin(phi);
+  t[second] = g.radius * g.sweep * std::cos(phi);
+  t[normal] = g.axial;
   return normalised(t);
 }
 
@@ -140,13 +136,12 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
     m.dir_in = arc_tangent(move, g, phi0);
     m.dir_out = arc_tangent(move, g, phi0 + g.sweep);
   } else {
-    const Vec3 d{move.end.x - move.start.x, move.end.y - move.start.y, move.end.z - move.start.z};
-    m.length = std::sqrt(dot(d, d));
+    const Vec3 d(move.end.x - move.start.x, move.end.y - move.start.y, move.end.z - move.start.z);
+    m.length = d.norm();
     if (m.length > kMinMoveLength) {
-      m.dir_in = m.dir_out = Vec3{d.x / m.length, d.y / m.length, d.z / m.length};
-      axis(0, m.dir_in.x);
-      axis(1, m.dir_in.y);
-      axis(2, m.dir_in.z);
+      m.dir_in = m.dir_out = d / m.length;
+      for (int i = 0; i < 3; ++i)
+        axis(i, m.dir_in[i]);
     } else {
       // Rotary axes only: the path is measured in degrees, as LinuxCNC does.
       const double da = move.end.a - move.start.a, db = move.end.b - move.start.b,

@@ -7,14 +7,13 @@
 #include "ncjoule/machine.hpp"
 #include "warnings.hpp"
 
+#include <Eigen/Core>
+#include <Eigen/Geometry> // cross
+
 namespace ncjoule::kinematics_detail {
 
-struct Vec3 {
-  double x = 0, y = 0, z = 0;
-};
-inline double dot(const Vec3& a, const Vec3& b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
+// A vector of the linear axes X, Y, Z (Eigen's: no default value, so members start at Zero()).
+using Vec3 = Eigen::Vector3d;
 
 struct MoveLimits {
   double length = 0;       // mm along the path; degrees for a move of rotary axes only
@@ -22,7 +21,8 @@ struct MoveLimits {
   double vmax_machine = 0; // the same without the programmed feed: what the axes allow
   double accel = 0;        // path acceleration cap
   double jerk = 0;         // path jerk cap; 0 = none (trapezoid)
-  Vec3 dir_in, dir_out;    // unit tangents of the linear axes at the start and end
+  Vec3 dir_in = Vec3::Zero(),
+       dir_out = Vec3::Zero(); // unit tangents of the linear axes at the start and end
   bool rotary_only = false;
 };
 

@@ -51,13 +51,13 @@ public:
   }
 
   bool material_at(const Point3& p) const override {
-    const int i = detail::clamped_index(std::floor((p.x - grid_.x0) / grid_.dx));
-    const int j = detail::clamped_index(std::floor((p.y - grid_.y0) / grid_.dy));
+    const int i = detail::clamped_index(std::floor((p.x() - grid_.x0) / grid_.dx));
+    const int j = detail::clamped_index(std::floor((p.y() - grid_.y0) / grid_.dy));
     if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return false;
     const std::size_t c = std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i);
     for (std::uint32_t k = 0; k < count_[c]; ++k) {
       const ZInterval& iv = intervals_[first_[c] + k];
-      if (p.z > iv.lo && p.z < iv.hi) return true;
+      if (p.z() > iv.lo && p.z() < iv.hi) return true;
     }
     return false;
   }

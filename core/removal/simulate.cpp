@@ -292,8 +292,8 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
       // A program that starts with its tool in the material: the stock, the work offset or the
       // start point is wrong, and the first moves would cut where nothing can.
       first_move_checked_ = true;
-      const Point3 at{cmd.start.x, cmd.start.y, cmd.start.z};
-      if (engine_->material_at({at.x, at.y, z_sign * at.z})) {
+      const Pose& at = cmd.start;
+      if (engine_->material_at(Point3(at.x, at.y, z_sign * at.z))) {
         char text[200];
         std::snprintf(text, sizeof text,
                       "the program's first move starts inside the stock (X%.3f Y%.3f Z%.3f mm): "
@@ -317,7 +317,8 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     for (std::size_t s = 0; s + 1 < samples->size(); ++s) {
       const Pose& a = (*samples)[s].position;
       const Pose& b = (*samples)[s + 1].position;
-      steps_.push_back({&tool->second, {a.x, a.y, z_sign * a.z}, {b.x, b.y, z_sign * b.z}});
+      steps_.push_back(
+          {&tool->second, Point3(a.x, a.y, z_sign * a.z), Point3(b.x, b.y, z_sign * b.z)});
     }
     out[k].step_volume_mm3.resize(samples->size() - 1);
   }
@@ -336,7 +337,7 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
       const double v = volumes_[first[k] + s];
       if (depths) {
         const RemovalStep& step = steps_[first[k] + s];
-        const double depth = cut_tops_[first[k] + s] - std::min(step.from.z, step.to.z);
+        const double depth = cut_tops_[first[k] + s] - std::min(step.from.z(), step.to.z());
         r.step_depth_mm[s] = v > 0 && depth > 0 ? float(depth) : 0.0f;
       }
       r.step_volume_mm3[s] = v;

@@ -36,9 +36,9 @@ template <class F> double convex_min(F&& f, double a, double b) {
 } // namespace
 
 SweptStep::SweptStep(const Tool& tool, const Point3& from, const Point3& to)
-    : tool_(tool), ax_(from.x), ay_(from.y), az_(from.z), dz_(to.z - from.z),
-      radius_(tool.radius()), reach_(tool.reach_radius()), zlow_(std::min(from.z, to.z)) {
-  const double dx = to.x - from.x, dy = to.y - from.y;
+    : tool_(tool), ax_(from.x()), ay_(from.y()), az_(from.z()), dz_(to.z() - from.z()),
+      radius_(tool.radius()), reach_(tool.reach_radius()), zlow_(std::min(from.z(), to.z())) {
+  const double dx = to.x() - from.x(), dy = to.y() - from.y();
   len_ = std::hypot(dx, dy);
   if (len_ > kMinXyLength) {
     ux_ = dx / len_, uy_ = dy / len_;
@@ -52,8 +52,8 @@ SweptStep::SweptStep(const Tool& tool, const Point3& from, const Point3& to)
   }
   if (tool.shape == ToolShape::Drill || tool.shape == ToolShape::Chamfer)
     tan_half_ = std::tan(tool.tip_angle_deg * std::numbers::pi / 360.0);
-  xmin_ = std::min(from.x, to.x) - reach_, xmax_ = std::max(from.x, to.x) + reach_;
-  ymin_ = std::min(from.y, to.y) - reach_, ymax_ = std::max(from.y, to.y) + reach_;
+  xmin_ = std::min(from.x(), to.x()) - reach_, xmax_ = std::max(from.x(), to.x()) + reach_;
+  ymin_ = std::min(from.y(), to.y()) - reach_, ymax_ = std::max(from.y(), to.y()) + reach_;
 }
 
 double SweptStep::profile_height(double r) const {

@@ -63,13 +63,14 @@ public:
   }
 
   bool material_at(const Point3& p) const override {
-    const int i = detail::clamped_index(std::floor((p.x - grid_.x0) / grid_.dx));
-    const int j = detail::clamped_index(std::floor((p.y - grid_.y0) / grid_.dy));
+    const int i = detail::clamped_index(std::floor((p.x() - grid_.x0) / grid_.dx));
+    const int j = detail::clamped_index(std::floor((p.y() - grid_.y0) / grid_.dy));
     if (i < 0 || j < 0 || i >= grid_.nx || j >= grid_.ny) return false;
     const std::size_t c = std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i);
     double z = grid_.z0;
     for (int k = 0; k < nz_; ++k) {
-      if (p.z >= z && p.z < z + height_[k]) return voxels_[c * std::size_t(nz_) + std::size_t(k)];
+      if (p.z() >= z && p.z() < z + height_[k])
+        return voxels_[c * std::size_t(nz_) + std::size_t(k)];
       z += height_[k];
     }
     return false;

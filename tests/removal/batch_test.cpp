@@ -22,8 +22,8 @@ std::vector<RemovalStep> random_steps(const std::vector<Tool>& tools, std::size_
   std::vector<RemovalStep> steps;
   Point3 at{30, 30, 1};
   for (std::size_t k = 0; k < count; ++k) {
-    Point3 to{std::clamp(at.x + step(rng), -5.0, 65.0), std::clamp(at.y + step(rng), -5.0, 65.0),
-              dz(rng)};
+    Point3 to{std::clamp(at.x() + step(rng), -5.0, 65.0),
+              std::clamp(at.y() + step(rng), -5.0, 65.0), dz(rng)};
     if (k % 97 == 0) to = {xy(rng), xy(rng), 1}; // a jump across the stock
     steps.push_back({&tools[k / 500 % tools.size()], at, to});
     at = to;

@@ -22,6 +22,8 @@
 #include <string_view>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "ncjoule/gcode.hpp"
 #include "ncjoule/kinematics.hpp"
 #include "ncjoule/tool.hpp"
@@ -335,9 +337,8 @@ std::unique_ptr<StockShape> make_mesh_stock(TriangleMesh mesh, std::string descr
 enum class EngineKind : std::uint8_t { Dexel, Voxel };
 std::string_view engine_name(EngineKind kind); // "dexel", "voxel"
 
-struct Point3 {
-  double x = 0, y = 0, z = 0;
-};
+// A point of the tool tip in the program's frame (mm).
+using Point3 = Eigen::Vector3d;
 
 // Work counters, for benchmarks.
 struct EngineStats {
@@ -351,7 +352,7 @@ struct EngineStats {
 // One straight step of a tool, for removal in batches.
 struct RemovalStep {
   const Tool* tool = nullptr;
-  Point3 from, to;
+  Point3 from = Point3::Zero(), to = Point3::Zero();
 };
 
 class RemovalEngine {

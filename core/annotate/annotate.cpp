@@ -125,14 +125,21 @@ std::string_view file_eol(const CleanLines& lines, std::size_t position) {
   return "\n";
 }
 
+// An inch program's blocks give MRR in in^3/min, the unit its programmer reads removal rates in
+// (the header's MRR_IN3_MIN); a metric program's in mm^3/s.
+double block_mrr_scale(bool inch) {
+  return inch ? 60 / kMm3PerIn3 : 1.0;
+}
+
 std::vector<Field> block_fields(const LineSummary* summary, double end_s,
-                                const OperationSummary* op, const BlockFields& want) {
+                                const OperationSummary* op, const BlockFields& want,
+                                double mrr_scale) {
   std::vector<Field> fields;
   const double time_s = summary ? summary->time_s : 0.0;
   const double energy_j = summary ? summary->energy_j : 0.0;
   const double removed = summary ? summary->removed_mm3 : 0.0;
   const double power_w = time_s > 0 ? energy_j / time_s : 0.0;
-  const double mrr = time_s > 0 ? removed / time_s : 0.0;
+  const double mrr = time_s > 0 ? mrr_scale * removed / time_s : 0.0;
   auto wanted = [&](bool field, double value) { return field && !(want.omit_zero && value == 0); };
   // The block's time is written even when it is 0: a block with no field is a block with no
   // comment, and the time is what says it was estimated.
@@ -294,10 +301,10 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
     const bool op_start = op != operations.end();
     BlockNote note;
     if ((s && (s->has_move || s->time_s > 0)) || op_start)
-      note = block_note(
-          text,
-          block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr, options.fields),
-          estimate.dialect, style);
+      note = block_note(text,
+                        block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr,
+                                     options.fields, block_mrr_scale(estimate.inch)),
+                        estimate.dialect, style);
     if (note.own_line) {
       out += note.comment;
       out += lines.eol[i].empty() ? file_eol(lines, i) : lines.eol[i];

@@ -10,8 +10,6 @@
 namespace ncjoule::annotation {
 namespace {
 
-constexpr double kMm3PerIn3 = 25.4 * 25.4 * 25.4;
-
 struct Group {
   std::string label;
   std::vector<std::string> fields;

@@ -93,7 +93,7 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
   // Inch programs compare in in^3 (and J/in^3), as their programmers read volumes.
   const bool inch = std::all_of(ranked.begin(), ranked.end(),
                                 [](const RankedProgram& r) { return r.totals.inch; });
-  const double volume_unit = inch ? 16387.064 : 1.0; // mm^3 in one
+  const double volume_unit = inch ? kMm3PerIn3 : 1.0; // mm^3 in one
   std::printf("\n #  %-*s %6s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n",
               static_cast<int>(width), "program", "setups", "time", "air cut", "energy kJ", "kWh",
               inch ? "in3" : "mm3", inch ? "SEC J/in3" : "SEC J/mm3", "CO2 g",

@@ -38,9 +38,6 @@ struct EstimateCliOptions {
 // Human summary
 // ---------------------------------------------------------------------------------------------
 
-// mm^3 in a cubic inch (25.4^3): an inch program's volumes are read in in^3.
-constexpr double kMm3PerIn3 = 16387.064;
-
 std::string clock_text(double seconds) {
   return duration_words(seconds);
 }

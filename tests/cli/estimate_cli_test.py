@@ -2,7 +2,9 @@
 """`ncjoule estimate` end to end: the JSON names docs/json.md promises, totals that add up, and
 clear failures (undefined tool, bad profile, unreadable file) with exit code 2."""
 import json
+import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -223,6 +225,16 @@ with tempfile.TemporaryDirectory() as tmp:
           "the operations' volume column is in in^3")
     check("mm^3" in run("estimate", SAMPLE, "--machine", ZHOU, "--stock", STOCK).stdout,
           "a mm program's summary stays in mm^3")
+    # The annotated slot's MRR is in in^3/min too. The block cuts the stock from X0 to X2 full
+    # width (0.25 x 0.1 x 2 in) and the tool's round front past X2 (half a 0.25 in disc, 0.1 in
+    # deep): 0.0525 in^3 over its time T (the spindle's run-up to S8000 included).
+    block = [l for l in run("annotate", inch, "--stock", box).stdout.splitlines()
+             if l.startswith("G1 X2. F20.")]
+    fields = re.search(r" T=([0-9.]+)S .* MRR=([0-9.]+)", block[0], re.I) if len(block) == 1 else None
+    expected = (0.25 * 0.1 * 2 + math.pi / 2 * 0.125 ** 2 * 0.1) / (float(fields.group(1)) / 60) \
+        if fields else 0
+    check(fields is not None and abs(float(fields.group(2)) / expected - 1) < 0.02,
+          f"the slot block's MRR is {expected:.3f} in^3/min ({block})")
 
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

@@ -220,6 +220,9 @@ struct SetupSummary {
   double time_s = 0, energy_j = 0, removed_mm3 = 0;
 };
 
+// mm^3 in a cubic inch (25.4^3): an inch program's volumes and removal rates are read in in^3.
+inline constexpr double kMm3PerIn3 = 25.4 * 25.4 * 25.4;
+
 struct Estimate {
   std::string file;
   Dialect dialect;

@@ -131,6 +131,16 @@ std::string operation_name_in(std::string_view comment) {
     text.remove_suffix(1);
   if (text.empty() || text.size() > 80) return {};
   std::string l = to_lower(text);
+  // LinuxCNC's comment commands: a message to the operator names what comes ("MSG, Change tool
+  // bit to drill size 0.4mm"); debug, print and log output ("DEBUG, slot width is #<w>") and
+  // the log and probe file commands name nothing.
+  if (starts_with(l, "msg,")) {
+    text = trim(text.substr(4));
+    l = to_lower(text);
+  }
+  for (const char* command : {"debug,", "print,", "log,", "logopen,", "logappend,", "logclose",
+                              "probeopen", "probeclose", "abort,"})
+    if (starts_with(l, command)) return {};
   for (const char* prefix : {"begin operation:", "begin operation",
                              "start operation:", "operation:", "op:", "block-name:"}) {
     if (starts_with(l, prefix)) {

@@ -97,6 +97,19 @@ TEST_CASE("boilerplate, rules, resets and bare operation numbers are no names") 
   CHECK(operation_name_in("== Contour1 ==") == "Contour1");
 }
 
+TEST_CASE("LinuxCNC's comment commands: a message names, debug and log output do not") {
+  // pcb2gcode asks for each drill with a message; hand-written programs print their variables.
+  CHECK(operation_name_in("MSG, Change tool bit to drill size 0.4mm") ==
+        "Change tool bit to drill size 0.4mm");
+  CHECK(operation_name_in("msg,Attach the probe tool") == "Attach the probe tool");
+  CHECK(operation_name_in("DEBUG, slot width is #<slot_deg>").empty());
+  CHECK(operation_name_in("debug,icutter_deg= #<icutter_deg>").empty());
+  CHECK(operation_name_in("PRINT, depth #<depth>").empty());
+  CHECK(operation_name_in("LOGOPEN,probe-results.txt").empty());
+  CHECK(operation_name_in("PROBEOPEN points.txt").empty());
+  CHECK(operation_name_in("MSG,").empty());
+}
+
 TEST_CASE("a name on a line with only a block number: N10 (Face1)") {
   // Fusion's Tormach and Haas posts number every block, the operation's comment too.
   const Estimate e = run("N5 G21 G90\nN10 (Face1)\nN15 T1 M6\nN20 S1000 M3\nN25 G1 X5 F100\n"

@@ -3,8 +3,8 @@
 # per block. See README.md next to this file.
 #
 # The wrapped post does all the work; this script only runs
-#     ncjoule annotate --machine=PROFILE --in-place [...] -- FILE   (output to a file), or
-#     ncjoule annotate --machine=PROFILE [...] -- -                 (FreeCAD asks for a string: "-")
+#     ncjoule annotate [--machine=PROFILE] --in-place [...] -- FILE   (output to a file), or
+#     ncjoule annotate [--machine=PROFILE] [...] -- -                 (FreeCAD asks for a string: "-")
 # on its output, with a --tool N:TYPE:DIAMETER for each tool controller's tool (its shape and
 # sizes as FreeCAD holds them). When ncjoule is missing, not configured or fails, the post's output is returned
 # and written exactly as the wrapped post made it, with a warning in the report view saying why:
@@ -24,7 +24,8 @@ the G-code with ncjoule's predicted time, MRR, power and energy per block."""
 parser = argparse.ArgumentParser(prog="ncjoule", add_help=False)
 parser.add_argument("--post", help="FreeCAD post to wrap: linuxcnc, grbl, fanuc, ... "
                     "(default: $NCJOULE_POST or linuxcnc)")
-parser.add_argument("--machine", help="ncjoule machine profile (.toml); default $NCJOULE_MACHINE")
+parser.add_argument("--machine", help="ncjoule machine profile (.toml or a shipped profile's name); "
+                    "default $NCJOULE_MACHINE, else the user config's machine, else ncjoule's generic one")
 parser.add_argument("--ncjoule", help="the ncjoule program; default $NCJOULE or ncjoule on the PATH")
 parser.add_argument("--stock", help="ncjoule --stock text (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an "
                     ".stl); default $NCJOULE_STOCK, else the job's stock bounding box")
@@ -198,9 +199,6 @@ class _Settings:
 
     def problem(self):
         """Why ncjoule cannot run, or None."""
-        if not self.machine:
-            return "no machine profile (--machine PROFILE in the job's post-processor arguments, " \
-                   "or NCJOULE_MACHINE)"
         if os.sep in self.program or (os.altsep and os.altsep in self.program):
             if not os.path.isfile(self.program):
                 return "ncjoule not found at %s" % self.program
@@ -211,7 +209,8 @@ class _Settings:
     def command(self, source, in_place=False):
         """ncjoule annotate for `source` (a file, or "-" for standard input), every value one
         argument, and the file after "--": a file named like an option ("-x.nc") stays a file."""
-        cmd = [self.program, "annotate", "--machine=" + self.machine]
+        # Without a machine ncjoule takes the user config's, else its generic profile.
+        cmd = [self.program, "annotate"] + (["--machine=" + self.machine] if self.machine else [])
         if self.stock:
             cmd.append("--stock=" + self.stock)
         if in_place:

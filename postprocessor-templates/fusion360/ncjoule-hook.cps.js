@@ -2,7 +2,7 @@
   ncjoule hook for Autodesk post processors (Fusion, Inventor CAM, HSM): append this whole file
   to the end of a vendor .cps post. After the post has written its program(s), the hook runs
 
-      ncjoule annotate --machine=<profile> --in-place --stock=<the post's workpiece> [<extra arguments>] -- <file>
+      ncjoule annotate [--machine=<profile>] --in-place --stock=<the post's workpiece> [<extra arguments>] -- <file>
 
   on every NC file the post wrote, so each block carries its predicted time, MRR, power and
   energy as a comment. See README.md next to this file.
@@ -15,7 +15,9 @@
       ncjouleEnable     annotate the output (on/off)
       ncjoulePath       the ncjoule program ("ncjoule" finds it on the PATH; on Windows also
                         in the install folders, as ncjoule.exe)
-      ncjouleMachine    the machine profile (.toml); a relative path is looked up next to the post
+      ncjouleMachine    the machine profile: a .toml file (a relative path is looked up next to
+                        the post) or a shipped profile's name (haas-vf2); empty: the user
+                        config's machine, else ncjoule's generic profile, as on the command line
       ncjouleStock      a stock in place of the setup's workpiece, as ncjoule's --stock text
                         (box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an .stl file); empty: the
                         workpiece the post engine knows (getWorkpiece(), in the program's units),
@@ -54,7 +56,7 @@ var ncjouleHookPropertyDefinitions = {
   },
   ncjouleMachine: {
     title: "ncjoule: machine profile",
-    description: "Machine profile (.toml) to predict with; a relative path is looked up in the post's folder.",
+    description: "Machine profile to predict with: a .toml file (a relative path is looked up in the post's folder) or a shipped profile's name (haas-vf2); empty: the user config's machine, else ncjoule's generic profile.",
     type: "string",
     value: "",
     scope: "post"
@@ -493,7 +495,7 @@ function ncjouleWorkpieceStock() {
 
 // Annotates one file in place; true when it was annotated. Never throws.
 function ncjouleAnnotateFile(program, profile, file) {
-  var words = ["annotate", "--machine=" + profile, "--in-place"];
+  var words = ["annotate"].concat(profile ? ["--machine=" + profile] : [], ["--in-place"]);
   var stock = String(ncjouleProperty("ncjouleStock") || "") || ncjouleWorkpieceStock();
   if (stock) {
     words.push("--stock=" + stock);
@@ -544,8 +546,8 @@ function ncjouleAnnotateOutputs() {
     var program = ncjouleFindProgram(String(ncjouleProperty("ncjoulePath") || "ncjoule"));
     var profile = String(ncjouleProperty("ncjouleMachine") || "");
     if (!profile) {
-      ncjouleWarning("no machine profile set (property ncjouleMachine); the output is not annotated");
-      return;
+      // As on the command line: the user config's machine, else ncjoule's generic profile.
+      ncjouleLog("no machine profile set (property ncjouleMachine): ncjoule takes the user config's, else its generic one");
     }
     if (typeof execute != "function") {
       ncjouleWarning("this post engine cannot run programs (no execute()); the output is not annotated");
@@ -555,8 +557,8 @@ function ncjouleAnnotateOutputs() {
       ncjouleWarning("ncjoule not found at '" + program + "' (property ncjoulePath); the output is not annotated");
       return;
     }
-    profile = ncjouleResolveProfile(profile);
-    if (ncjouleHasFolder(profile) && !ncjouleIsFile(profile)) {
+    profile = profile ? ncjouleResolveProfile(profile) : "";
+    if (profile && ncjouleHasFolder(profile) && !ncjouleIsFile(profile)) {
       ncjouleWarning("machine profile '" + profile + "' not found (property ncjouleMachine); the output is not annotated");
       return;
     }

@@ -9,7 +9,9 @@ rem
 rem Settings (environment variables):
 rem   NCJOULE          the ncjoule program (default: ncjoule.exe on the PATH; give the .exe,
 rem                    not a .bat or .cmd, which cmd.exe would parse again)
-rem   NCJOULE_MACHINE  the machine profile (.toml) - required
+rem   NCJOULE_MACHINE  the machine profile: a .toml file or a shipped profile's name (default:
+rem                    what ncjoule itself takes: the job file's machine, the user config's
+rem                    machine = ..., else its generic profile)
 rem   NCJOULE_STOCK    ncjoule's --stock text (optional)
 rem   NCJOULE_ARGS     further arguments for "ncjoule annotate" (optional), split at blanks by
 rem                    ncjoule itself; cmd.exe never acts on them (& | < > ^ %% ! stay text)
@@ -20,7 +22,7 @@ rem                    this many seconds by the clock (default 3)
 rem   NCJOULE_DISABLE  1 turns the hook off
 rem None of them may hold a double quote (it would end the quoting of an argument).
 rem
-rem The file is annotated with "ncjoule annotate --machine=PROFILE --in-place ... -- FILE", which
+rem The file is annotated with "ncjoule annotate [--machine=PROFILE] --in-place ... -- FILE", which
 rem writes through a temporary file: if ncjoule fails or is missing, the file stays as the CAM
 rem system wrote it and the hook prints a warning. Whether it was annotated is read from
 rem ncjoule's exit code and its status line, never from the file. The hook always exits 0, so a
@@ -72,10 +74,6 @@ for /f "delims=abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789 " 
   echo ncjoule-hook: warning: NCJOULE_EXT may hold only letters, digits and spaces; nothing is annotated 1>&2
   exit /b 1
 )
-if "!NCJOULE_MACHINE!"=="" (
-  echo ncjoule-hook: warning: set NCJOULE_MACHINE to the machine profile; nothing is annotated 1>&2
-  exit /b 1
-)
 exit /b 0
 
 rem ---------------------------------------------------------------------------------------------
@@ -101,10 +99,19 @@ rem errors (annotated, with errors its controller would refuse), busy (still bei
 rem changed while read: nothing written) or failed; "err" names the file holding its messages.
 :take
 set "err=%TEMP%\ncjoule-hook-%RANDOM%%RANDOM%.err"
-if defined NCJOULE_STOCK (
-  "!NCJOULE!" annotate "--machine=!NCJOULE_MACHINE!" --in-place "--stock=!NCJOULE_STOCK!" !NCJOULE_ARGS! -- "!file!" 1>nul 2>"!err!" <nul
+rem Each setting that is given is one quoted argument (a path may hold blanks).
+if defined NCJOULE_MACHINE (
+  if defined NCJOULE_STOCK (
+    "!NCJOULE!" annotate "--machine=!NCJOULE_MACHINE!" --in-place "--stock=!NCJOULE_STOCK!" !NCJOULE_ARGS! -- "!file!" 1>nul 2>"!err!" <nul
+  ) else (
+    "!NCJOULE!" annotate "--machine=!NCJOULE_MACHINE!" --in-place !NCJOULE_ARGS! -- "!file!" 1>nul 2>"!err!" <nul
+  )
 ) else (
-  "!NCJOULE!" annotate "--machine=!NCJOULE_MACHINE!" --in-place !NCJOULE_ARGS! -- "!file!" 1>nul 2>"!err!" <nul
+  if defined NCJOULE_STOCK (
+    "!NCJOULE!" annotate --in-place "--stock=!NCJOULE_STOCK!" !NCJOULE_ARGS! -- "!file!" 1>nul 2>"!err!" <nul
+  ) else (
+    "!NCJOULE!" annotate --in-place !NCJOULE_ARGS! -- "!file!" 1>nul 2>"!err!" <nul
+  )
 )
 set "rc=!errorlevel!"
 set "outcome=failed"

@@ -6,7 +6,9 @@
 #   ncjoule-hook.sh [OPTIONS] --watch DIR        annotate every NC file that appears in DIR
 #
 # Options:
-#   --machine PROFILE   machine profile (.toml); default $NCJOULE_MACHINE
+#   --machine PROFILE   machine profile: a .toml file or a shipped profile's name; default
+#                       $NCJOULE_MACHINE, else what ncjoule itself takes (the job file's
+#                       machine, the user config's `machine = ...`, else its generic profile)
 #   --ncjoule PATH      the ncjoule program; default $NCJOULE, else ncjoule on the PATH
 #   --stock TEXT        ncjoule's --stock text; default $NCJOULE_STOCK (empty: box of the cuts)
 #   --arg ARGUMENT      one more argument for `ncjoule annotate`, passed as it is (repeatable)
@@ -27,7 +29,7 @@
 # written; an argument with a blank in it goes in --arg. "--" and --follow-symlinks are not
 # passed on. NCJOULE_DISABLE=1 turns the hook off (it then does nothing and exits 0).
 #
-# A file is annotated with `ncjoule annotate --machine=PROFILE --in-place [...] -- FILE`, which
+# A file is annotated with `ncjoule annotate [--machine=PROFILE] --in-place [...] -- FILE`, which
 # writes through a temporary file: when ncjoule fails or is missing, the file stays exactly as
 # the CAM system wrote it, and the hook prints a warning saying why. Whether a file was annotated
 # is decided from ncjoule's exit status and its last line on stderr, never from the file's
@@ -132,11 +134,10 @@ fi
 
 failed=0 # set when a file was not annotated (--strict exits 1 then)
 
-# Why no file can be annotated (no profile, no ncjoule), or nothing.
+# Why no file can be annotated (no ncjoule), or nothing. Without a machine profile ncjoule takes
+# the job file's or the user config's, as on the command line.
 not_ready() {
-  if [ -z "$machine" ]; then
-    printf 'no machine profile (--machine PROFILE or NCJOULE_MACHINE)'
-  elif [[ $ncjoule == */* ]]; then
+  if [[ $ncjoule == */* ]]; then
     [ -x "$ncjoule" ] || printf 'ncjoule not found at %s' "$ncjoule"
   elif ! command -v "$ncjoule" >/dev/null 2>&1; then
     printf '%s is not on the PATH (--ncjoule PATH or NCJOULE)' "$ncjoule"
@@ -161,7 +162,7 @@ take() {
   local f=$1 err rc last
   # Even after "--", a lone "-" means standard input to ncjoule: a file of that name is ./-.
   [ "$f" = - ] && f=./-
-  err=$("$ncjoule" annotate "--machine=$machine" --in-place ${stock:+"--stock=$stock"} \
+  err=$("$ncjoule" annotate ${machine:+"--machine=$machine"} --in-place ${stock:+"--stock=$stock"} \
     ${extra[@]+"${extra[@]}"} -- "$f" 2>&1 >/dev/null </dev/null)
   rc=$?
   last=${err##*"$newline"}

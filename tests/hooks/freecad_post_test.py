@@ -278,6 +278,9 @@ def main():
             ["--machine=-m.toml", "--stock=-s", "--ncjoule-args=-- --compact"])[0], []).command("-f.nc", True)
         check(cmd[1:] == ["annotate", "--machine=-m.toml", "--stock=-s", "--in-place", "--compact", "--", "-f.nc"],
               "command: %r" % cmd)
+        # No machine anywhere: none is passed, and ncjoule takes the user config's.
+        cmd = ncjoule_post._Settings(ncjoule_post.parser.parse_known_args([])[0], []).command("f.nc")
+        check(not any(a.startswith("--machine") for a in cmd), "no machine: %r" % cmd)
 
     run_case("a file named like an option (-x.nc) is annotated", option_like_name)
     run_case("extra arguments: split, '--' and --follow-symlinks left out", extra_arguments)

@@ -204,13 +204,30 @@ test("ncjoule failing (a profile with errors) only warns, with the exit code's m
   assert.ok(/exited with 2 \(bad input/.test(ctx.record.warnings[0]), ctx.record.warnings[0]);
 });
 
-test("no machine profile set: a warning, nothing run", () => {
+test("no machine profile set: ncjoule takes the user config's machine", () => {
   const dir = tempDir();
   const out = path.join(dir, "1002.ngc");
   fs.copyFileSync(PROGRAM_A, out);
-  const ctx = modernPost(out, {ncjoulePath: NCJOULE});
-  assert.strictEqual(ctx.record.executed.length, 0);
-  assert.ok(/no machine profile/.test(ctx.record.warnings[0]));
+  // The user config (the file NCJOULE_CONFIG names) names a shipped profile; the hook passes no
+  // --machine, so ncjoule takes it.
+  const config = path.join(dir, "config.toml");
+  fs.writeFileSync(config, 'machine = "haas-vf2"\n');
+  const saved = process.env.NCJOULE_CONFIG;
+  process.env.NCJOULE_CONFIG = config;
+  let ctx;
+  try {
+    ctx = modernPost(out, {ncjoulePath: NCJOULE});
+  } finally {
+    if (saved === undefined) delete process.env.NCJOULE_CONFIG;
+    else process.env.NCJOULE_CONFIG = saved;
+  }
+  assert.strictEqual(ctx.record.executed.length, 1);
+  const argv = ctx.record.executed[0][2];
+  assert.ok(!argv.some((a) => a.startsWith("--machine")), argv.join(" "));
+  assert.strictEqual(ctx.record.warnings.length, 0, ctx.record.warnings.join("; "));
+  const text = fs.readFileSync(out, "latin1");
+  assert.ok(/\(NCJ FILE KEY=/.test(text), "annotated");
+  assert.ok(/NCJ MACHINE NAME=\S+ PROFILE=haas-vf2\.toml/i.test(text), "with the config's machine");
 });
 
 test("turned off: nothing runs and the file is untouched", () => {

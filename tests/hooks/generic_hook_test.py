@@ -182,6 +182,17 @@ def file_mode(folder):
     check(r.returncode == 1 and "symbolic link" in r.stderr.decode() and read(a) == a_original,
           "link: %d %r" % (r.returncode, r.stderr.decode()))
 
+    case("no machine given: ncjoule takes the user config's, as on the command line")
+    config = os.path.join(folder, "config")
+    os.makedirs(os.path.join(config, "ncjoule"))
+    with open(os.path.join(config, "ncjoule", "config.toml"), "w") as f:
+        f.write('machine = "haas-vf2"\n')
+    c = os.path.join(folder, "config-machine.nc")
+    shutil.copyfile(os.path.join(SAMPLES, A + ".ngc"), c)
+    r = hook("--strict", "--ncjoule", NCJOULE, c, env={"XDG_CONFIG_HOME": config})
+    check(r.returncode == 0 and re.search(rb"NCJ MACHINE NAME=\S+ PROFILE=haas-vf2\.toml", read(c), re.I),
+          "no --machine: not annotated with the config's machine: %d %r" % (r.returncode, r.stderr.decode()))
+
     case("NCJOULE_DISABLE=1: nothing happens")
     r = hook("--ncjoule", NCJOULE, "--machine", MACHINE, a, env={"NCJOULE_DISABLE": "1"})
     check(r.returncode == 0 and read(a) == a_original, "disabled: file changed")

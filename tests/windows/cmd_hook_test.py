@@ -3,8 +3,9 @@
 
 - FILE mode: a program whose name has spaces, non-ASCII letters, & ( ) and ! is annotated in
   place by the real ncjoule.exe (strip gives it back), the hook says so and exits 0;
-- nothing breaks a post: ncjoule missing, no machine profile set, a profile that does not load,
-  a file that does not exist, a double quote in a setting: exit 0, a warning, the file as it was;
+- nothing breaks a post: ncjoule missing, a profile that does not load, a file that does not
+  exist, a double quote in a setting: exit 0, a warning, the file as it was;
+- no machine profile set: ncjoule's own (the user config's, else its generic one) is used;
 - /watch FOLDER /once: every NC file of the folder is annotated, other files are left alone.
 (Environment: wine_common.py.)
 """
@@ -101,7 +102,6 @@ check(r.returncode == 0 and "unchanged" in text(r.stdout), "file mode, again: no
 # Nothing fails the post, and the file stays as it was.
 for what, settings in [
         ("ncjoule missing", {"NCJOULE": win(os.path.join(WORK, "no such folder", "ncjoule.exe"))}),
-        ("no machine profile", {"NCJOULE_MACHINE": None}),
         ("a profile that does not load", {"NCJOULE_MACHINE": win(SAMPLE)}),
         ("a double quote in a setting", {"NCJOULE_ARGS": '--dialect "fanuc'})]:
     p = post("untouched.nc")
@@ -109,6 +109,11 @@ for what, settings in [
     check(r.returncode == 0, "%s: exit %d" % (what, r.returncode))
     check("warning" in text(r.stderr), "%s: no warning: %r" % (what, text(r.stderr)[-300:]))
     check(read(p) == original, "%s: the file was changed" % what)
+# No machine profile set: ncjoule takes its own (the user config's, else the generic one).
+p = post("no-machine.nc")
+r = hook([win(p)], NCJOULE_MACHINE=None)
+check(r.returncode == 0 and b"NCJ " in read(p), "no NCJOULE_MACHINE: not annotated: %r" %
+      text(r.stderr)[-300:])
 r = hook([win(os.path.join(FOLDER, "missing.nc"))])
 check(r.returncode == 0 and "no such file" in text(r.stderr), "a missing file: %r" % text(r.stderr)[-300:])
 

@@ -91,14 +91,17 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(finite_between(0.001, 1e6));
   cmd.add_flag("--no-removal", s.no_removal,
                "Do not simulate material removal (no tools needed; cutting power is zero)");
-  cmd.add_option("--co2", s.co2_kg_per_kwh, "kg of CO2 per kWh (overrides the profile)")
+  cmd.add_option("--co2", s.co2_kg_per_kwh,
+                 "kg of CO2 per kWh (overrides the user config's co2_kg_per_kwh and the profile)")
       ->check(finite_between(0, 100));
-  cmd.add_option("--price", s.price_per_kwh, "Price per kWh (overrides the profile)")
+  cmd.add_option("--price", s.price_per_kwh,
+                 "Price per kWh (overrides the user config's price_per_kwh and the profile)")
       ->check(finite_between(0, 1e6));
-  cmd.add_option("--machine-rate", s.machine_rate_per_hour,
-                 "Machine-hour rate besides electricity (depreciation, space, operator), per "
-                 "hour in the profile's currency; added to the cost (overrides the profile's "
-                 "machine_rate_per_hour)")
+  cmd.add_option(
+         "--machine-rate", s.machine_rate_per_hour,
+         "Machine-hour rate besides electricity (depreciation, space, operator), per "
+         "hour in the profile's currency; added to the cost (overrides the user config's and "
+         "the profile's machine_rate_per_hour)")
       ->check(finite_between(0, 1e7));
 }
 
@@ -187,6 +190,11 @@ std::optional<EstimateSettings> completed(EstimateSettings s, const std::string&
                             : (std::filesystem::path(file).parent_path() / line).string();
     }
   }
+  // The shop's costs, where the command line gave none.
+  if (!s.price_per_kwh) s.price_per_kwh = config->price_per_kwh;
+  if (!s.machine_rate_per_hour) s.machine_rate_per_hour = config->machine_rate_per_hour;
+  if (!s.co2_kg_per_kwh) s.co2_kg_per_kwh = config->co2_kg_per_kwh;
+  if (s.currency.empty()) s.currency = config->currency;
   s.config_stock = config->stock;
   s.config_stock_origin = config->stock_origin;
   s.config_material = config->material;
@@ -270,6 +278,7 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
   options.energy.price_per_kwh = s.price_per_kwh;
   options.energy.machine_rate_per_hour = s.machine_rate_per_hour;
+  if (!s.currency.empty()) options.energy.currency = s.currency;
   return options;
 }
 

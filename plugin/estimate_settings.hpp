@@ -29,6 +29,7 @@ struct EstimateSettings {
   double input_limit_mib = double(kDefaultMaxProgramBytes >> 20);
   bool no_removal = false;
   std::optional<double> co2_kg_per_kwh, price_per_kwh, machine_rate_per_hour;
+  std::string currency; // of the price and the rate; empty: the profile's
   // Filled in by estimate_options from the program's .stock file and the user config.
   std::string program_stock, config_stock, config_material;
   TextOrigin program_stock_origin, config_stock_origin; // where those two stocks are written

@@ -1,5 +1,7 @@
 #include "user_config.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -82,17 +84,45 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
   static const Key keys[] = {
       {"machine", &UserConfig::machine, true},       {"material", &UserConfig::material, false},
       {"tool_table", &UserConfig::tool_table, true}, {"tool_units", &UserConfig::tool_units, false},
-      {"stock", &UserConfig::stock, false},          {"dialect", &UserConfig::dialect, false}};
+      {"stock", &UserConfig::stock, false},          {"dialect", &UserConfig::dialect, false},
+      {"currency", &UserConfig::currency, false}};
+  // The shop's costs, numbers with the range the command line's options take.
+  struct NumberKey {
+    const char* name;
+    std::optional<double> UserConfig::*field;
+    double max;
+  };
+  static const NumberKey number_keys[] = {
+      {"price_per_kwh", &UserConfig::price_per_kwh, 1e6},
+      {"machine_rate_per_hour", &UserConfig::machine_rate_per_hour, 1e7},
+      {"co2_kg_per_kwh", &UserConfig::co2_kg_per_kwh, 100}};
   for (const auto& [name, node] : document) {
     const auto where = node.source().begin;
     const Key* key = nullptr;
     for (const Key& k : keys)
       if (name.str() == k.name) key = &k;
+    const NumberKey* number_key = nullptr;
+    for (const NumberKey& k : number_keys)
+      if (name.str() == k.name) number_key = &k;
+    if (number_key) {
+      const std::optional<double> value = node.value<double>(); // an integer is taken too
+      if (!value || !std::isfinite(*value) || *value < 0 || *value > number_key->max) {
+        char text[160];
+        std::snprintf(text, sizeof text, "%s: must be a number from 0 to %g", number_key->name,
+                      number_key->max);
+        diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column), text});
+        failed = true;
+        continue;
+      }
+      config.*(number_key->field) = *value;
+      continue;
+    }
     if (!key) {
       diagnostics.push_back({Severity::Warning, path, int(where.line), int(where.column),
-                             std::string(name.str()) + ": unknown key, ignored (known: machine, "
-                                                       "material, tool_table, tool_units, stock, "
-                                                       "dialect)"});
+                             std::string(name.str()) +
+                                 ": unknown key, ignored (known: machine, material, tool_table, "
+                                 "tool_units, stock, dialect, price_per_kwh, "
+                                 "machine_rate_per_hour, currency, co2_kg_per_kwh)"});
       continue;
     }
     if (!node.is_string() || node.value<std::string>()->empty()) {

@@ -7,6 +7,10 @@
 //       tool_units = "mm"
 //       stock = "box:0,0,-20,100,60,0"   # or an STL file
 //       dialect = "auto"
+//       price_per_kwh = 0.21             # the shop's costs: electricity, in `currency`,
+//       machine_rate_per_hour = 85       # the machine's time (depreciation, space, operator)
+//       currency = "EUR"                 # the two above are in it (default: the profile's)
+//       co2_kg_per_kwh = 0.35            # the shop's electricity mix
 //   PROGRAM.ncjoule.toml next to PROGRAM.nc: a job file (stock, material, [[tool]] entries)
 //   PROGRAM.stock next to PROGRAM.nc: one stock, as --stock takes it
 //
@@ -25,7 +29,10 @@ namespace ncjoule::cli {
 
 struct UserConfig {
   std::string path; // the file read; empty when there is none
-  std::string machine, material, tool_table, tool_units, stock, dialect;
+  std::string machine, material, tool_table, tool_units, stock, dialect, currency;
+  // The shop's costs: each overrides the machine profile's, and --price, --machine-rate and
+  // --co2 override them.
+  std::optional<double> price_per_kwh, machine_rate_per_hour, co2_kg_per_kwh;
   TextOrigin stock_origin; // where `stock` is written, for its diagnostics
 };
 

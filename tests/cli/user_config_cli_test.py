@@ -162,6 +162,27 @@ try:
     r = run("estimate", part, "--json", config=unknown)
     check(r.returncode == 0 and "machin: unknown key" in r.stderr, "an unknown key is a warning")
 
+    # The shop's costs: price, machine-hour rate, currency and CO2 factor, over the profile's;
+    # the command line's options over them.
+    shop = write(os.path.join(work, "shop.toml"),
+                 'machine = "generic-3axis"\nprice_per_kwh = 0.5\nmachine_rate_per_hour = 60\n'
+                 'currency = "USD"\nco2_kg_per_kwh = 0.1\n')
+    r, doc = estimate(lone, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0", config=shop)
+    kwh = doc["energy_j"] / 3.6e6 if doc else 0
+    check(doc is not None and doc["currency"] == "USD"
+          and abs(doc["electricity_cost"] - 0.5 * kwh) < 1e-9
+          and abs(doc["machine_cost"] - 60 * doc["time_s"] / 3600) < 1e-9
+          and abs(doc["co2_kg"] - 0.1 * kwh) < 1e-9,
+          f"the config's price, rate, currency and CO2 factor are used ({doc and doc['cost']})")
+    r, doc = estimate(lone, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      "--price", "0.25", "--machine-rate", "0", config=shop)
+    check(doc is not None and abs(doc["electricity_cost"] - 0.25 * doc["energy_j"] / 3.6e6) < 1e-9
+          and doc["machine_cost"] == 0, "--price and --machine-rate win over the config's")
+    bad_rate = write(os.path.join(work, "bad-rate.toml"), 'machine_rate_per_hour = -5\n')
+    r = run("estimate", part, config=bad_rate)
+    check(r.returncode == 2 and "bad-rate.toml:1:" in r.stderr and "machine_rate_per_hour" in r.stderr,
+          f"a negative rate in the config is refused with its line ({r.stderr[-200:]!r})")
+
     # doctor and --version.
     r = run("--version")
     check(r.returncode == 0 and r.stdout.startswith("ncjoule 0."), f"--version ({r.stdout!r})")

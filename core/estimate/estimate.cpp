@@ -274,6 +274,8 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   interpreter.start_inch = setup.power_on_inch.value_or(false);
   interpreter.cutter_compensation = options.cutter_compensation;
   interpreter.default_cutter_compensation = setup.cutter_compensation;
+  interpreter.peck_clearance_mm = setup.peck_clearance_mm;
+  interpreter.chip_break_retract_mm = setup.chip_break_retract_mm;
   interpreter.comp_radius_mm = comp_radii;
   std::vector<Diagnostic> macro_problems; // control programs that could not be read
   std::vector<std::string> macro_dirs = options.macro_dirs;

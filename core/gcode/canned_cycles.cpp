@@ -13,9 +13,6 @@
 namespace ncjoule::detail {
 namespace {
 
-// How far above the last peck a peck cycle rapids back down (rs274ngc: 0.010 inch).
-constexpr double kPeckClearanceInch = 0.010;
-
 struct PlaneAxes {
   double Pose::*a;
   double Pose::*b;
@@ -105,7 +102,10 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
   double dwell = cycle_p_;
   if (dialect_.dwell_p_in_ms) dwell /= 1000.0;
   const double clear = retract_to_r_ ? r : std::max(r, old_c);
-  const double peck_clearance = state_.inch ? kPeckClearanceInch * 25.4 : kPeckClearanceInch * 25.4;
+  // Peck drilling's small moves: the machine's parameters, else its family's (mm).
+  const double peck_clearance = options_.peck_clearance_mm.value_or(dialect_.peck_clearance_mm);
+  const double chip_break_retract =
+      options_.chip_break_retract_mm.value_or(dialect_.chip_break_retract_mm);
 
   auto at = [&](double a, double b, double c) {
     Pose p = pos_;
@@ -188,7 +188,7 @@ void Interpreter::canned_cycle(Motion cycle, const BlockValues& v) {
       for (; depth > bottom && !finished_; depth -= q) {
         feed(a, b, depth);
         if (cycle == Motion::G83) traverse(a, b, r);
-        traverse(a, b, depth + peck_clearance);
+        traverse(a, b, depth + (cycle == Motion::G83 ? peck_clearance : chip_break_retract));
       }
       feed(a, b, bottom);
       traverse(a, b, clear);

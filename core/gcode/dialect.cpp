@@ -35,6 +35,9 @@ std::vector<Dialect> make_dialects() {
   // The builders' M codes differ; a rotary table's clamp and unclamp (M10/M11) is what Fanuc-
   // controlled mills with a 4th axis share, and what CAM posts for them write around every index.
   fanuc.machine_m_codes = {10, 11};
+  // G73's back-off and G83's clearance are parameters 5114 and 5115, set by the machine's
+  // builder (Fanuc Operator's Manual, "High-speed peck drilling cycle (G73)", "Peck drilling
+  // cycle (G83)"): no family default; rs274ngc's 0.010 in until a profile gives the machine's.
   all.push_back(fanuc);
 
   Dialect haas = fanuc;
@@ -42,6 +45,10 @@ std::vector<Dialect> make_dialects() {
   haas.dwell_p_in_ms = false;
   haas.dwell_p_integer_is_ms = true; // G4 P1000 = 1 s, G4 P1.0 = 1 s
   haas.haas_local_subprograms = true;
+  // Setting 22, Can Cycle Delta Z: G73's back-off and the height above the last peck G83
+  // rapids back down to; 0.050 in as shipped (Haas Mill Operator's Manual, Settings).
+  haas.peck_clearance_mm = 0.05 * 25.4;
+  haas.chip_break_retract_mm = 0.05 * 25.4;
   // Haas mill M codes (Haas Mill Operator's Manual, M-codes chapter) that move no axis ncjoule
   // times: 4th/5th-axis brakes (M10-M13), user and relay outputs (M21-M28, M51-M59, M61-M69),
   // chip auger (M31, M33), coolant spigot (M34, M35), gear ranges (M41, M42), pallet and part

@@ -23,10 +23,12 @@ public:
 
 private:
   double ramp_to(double signed_rpm); // seconds to go from the current speed to signed_rpm
+  double tool_change(int tool);      // seconds of an M6 for `tool`, by the sequence it runs
 
   const Kinematics& machine_;
   double programmed_rpm_ = 0; // last S word
   double running_rpm_ = 0;    // signed: + clockwise, - counter-clockwise, 0 stopped
+  int spindle_tool_ = -1;     // the tool an M6 of this program put in the spindle; -1 none yet
 };
 
 } // namespace ncjoule::kinematics_detail

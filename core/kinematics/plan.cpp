@@ -332,9 +332,11 @@ void Planner::Impl::time(WaitingCommand& w) {
 
 // A control that checks position at every stop waits there before the next block.
 void Planner::Impl::settle(const CanonCommand& c, TimedCommand& out) const {
-  if (!(k.settle_s > 0) || !is_move(c.kind) || !(out.duration_s > 0) || out.exit_speed_mm_s > 0)
+  const double settle_s =
+      c.kind == CanonKind::Traverse ? k.settle_rapid_s.value_or(k.settle_s) : k.settle_s;
+  if (!(settle_s > 0) || !is_move(c.kind) || !(out.duration_s > 0) || out.exit_speed_mm_s > 0)
     return;
-  out.duration_s += k.settle_s;
+  out.duration_s += settle_s;
   out.samples.push_back(MotionSample{clock + out.duration_s, 1.0, c.end, 0.0});
 }
 

@@ -1,4 +1,5 @@
 #include <array>
+#include <cmath>
 
 #include "sections.hpp"
 
@@ -19,6 +20,29 @@ AxisLimits read_axis(TableReader axis) {
   return limits;
 }
 
+// A table of (rpm, seconds) points, both rising: a spindle's run-up or run-down time from rest.
+std::vector<std::pair<double, double>> read_spindle_times(TableReader& t, std::string_view key) {
+  std::vector<std::pair<double, double>> points;
+  const toml::node* node = t.raw(key);
+  if (!node) return points;
+  const std::string rule = "must be [[RPM, SECONDS], ...]: the time from rest to each speed, "
+                           "both rising (e.g. [[3000, 0.0], [7500, 3.0], [12000, 7.0]])";
+  const toml::array* list = node->as_array();
+  if (!list || list->empty()) t.fail(key, rule);
+  for (const toml::node& item : *list) {
+    const toml::array* pair = item.as_array();
+    const std::optional<double> rpm =
+        pair && pair->size() == 2 ? (*pair)[0].value<double>() : std::nullopt;
+    const std::optional<double> s =
+        pair && pair->size() == 2 ? (*pair)[1].value<double>() : std::nullopt;
+    if (!rpm || !s || !std::isfinite(*rpm) || !std::isfinite(*s) || *rpm <= 0 || *s < 0 ||
+        (!points.empty() && (*rpm <= points.back().first || *s < points.back().second)))
+      t.fail(key, rule);
+    points.emplace_back(*rpm, *s);
+  }
+  return points;
+}
+
 } // namespace
 
 Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
@@ -37,8 +61,35 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   k.exact_stop_every_block = t.boolean("exact_stop_every_block");
   k.placeholder_rates = t.optional_boolean("placeholder_rates").value_or(false);
   k.tool_change_s = t.quantity("tool_change", Dimension::Time, Range::NonNegative);
+  k.spindle_waits = t.optional_boolean("spindle_waits").value_or(true);
+  k.tool_change_first_extra_s =
+      t.optional_quantity("tool_change_first_extra", Dimension::Time, Range::NonNegative)
+          .value_or(0.0);
+  k.tool_change_same_tool_s =
+      t.optional_quantity("tool_change_same_tool", Dimension::Time, Range::NonNegative);
+  k.spindle_run_up = read_spindle_times(t, "spindle_run_up_rpm_s");
+  k.spindle_run_down = read_spindle_times(t, "spindle_run_down_rpm_s");
+  // A measured run-up replaces the straight ramp, which is then not needed.
+  k.spindle_s_per_1000rpm =
+      k.spindle_run_up.empty()
+          ? t.quantity("spindle_ramp", Dimension::RampTime, Range::NonNegative)
+          : t.optional_quantity("spindle_ramp", Dimension::RampTime, Range::NonNegative)
+                .value_or(0.0);
+  if (k.spindle_run_up.empty() && !k.spindle_run_down.empty())
+    t.fail("spindle_run_down_rpm_s", "needs spindle_run_up_rpm_s (a run-down alone is not used)");
   k.settle_s = t.optional_quantity("settle", Dimension::Time, Range::NonNegative).value_or(0.0);
-  k.spindle_s_per_1000rpm = t.quantity("spindle_ramp", Dimension::RampTime, Range::NonNegative);
+  k.settle_rapid_s = t.optional_quantity("settle_rapid", Dimension::Time, Range::NonNegative);
+  if (auto waits = t.optional_table("waits")) {
+    read_source(*waits, "kinematics.waits", sources);
+    auto wait = [&](const char* stem) {
+      return waits->optional_quantity(stem, Dimension::Time, Range::NonNegative).value_or(0.0);
+    };
+    k.waits.optional_stop_s = wait("optional_stop");
+    k.waits.program_stop_s = wait("program_stop");
+    k.waits.program_end_s = wait("program_end");
+    k.waits.coolant_on_s = wait("coolant_on");
+    waits->finish();
+  }
 
   if (const auto z = t.optional_string("z_positive")) {
     if (*z == "up")

@@ -105,6 +105,12 @@ WorkSetup read_setup(TableReader t, std::vector<std::string>& sources) {
              "must be \"control\" (G41/G42 offset the part contour by the tool radius) or "
              "\"wear\" (the path is already the tool centre; G41/G42 add only a wear value)");
   }
+  // The control's peck distances (Fanuc parameters 5114/5115, Haas setting 22, ...).
+  if (const auto d = t.optional_quantity("peck_clearance", Dimension::Length, Range::NonNegative))
+    setup.peck_clearance_mm = *d;
+  if (const auto d =
+          t.optional_quantity("chip_break_retract", Dimension::Length, Range::NonNegative))
+    setup.chip_break_retract_mm = *d;
   if (const toml::node* node = t.raw("work_offsets_mm")) {
     const toml::table* table = node->as_table();
     if (!table) t.fail("work_offsets_mm", "must be a table: G54 = [X, Y, Z], ...");

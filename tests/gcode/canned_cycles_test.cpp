@@ -31,6 +31,32 @@ TEST_CASE("G73 only backs off to break the chip, G99 retracts to R") {
   CHECK(moves(p) == expected);
 }
 
+TEST_CASE("peck distances per family: Haas setting 22, a machine's own parameters") {
+  // Haas: G83 rapids back down to 0.050 in (setting 22 as shipped) above the last peck, and G73
+  // backs off as much; the program is metric, the setting is not.
+  const Toolpath g83 = run("G21\nG0 X0 Y0 Z5\nG98 G83 X1 Y2 Z-4 R1 Q1.5 F100\nG80\nM30\n", "haas");
+  CHECK(errors(g83) == 0);
+  const std::vector<std::string> p = moves(g83);
+  const std::vector<std::string> expected83 = {F(1, 2, -0.5), T(1, 2, 1), T(1, 2, 0.77),
+                                               F(1, 2, -2),   T(1, 2, 1), T(1, 2, -0.73),
+                                               F(1, 2, -3.5), T(1, 2, 1), T(1, 2, -2.23)};
+  REQUIRE(p.size() >= 3 + expected83.size());
+  CHECK(std::vector<std::string>(p.begin() + 3, p.begin() + 3 + long(expected83.size())) ==
+        expected83);
+  const Toolpath g73 = run("G21\nG0 X0 Y0 Z5\nG99 G73 X1 Y2 Z-4 R1 Q1.5 F100\nG80\nM30\n", "haas");
+  const std::vector<std::string> expected73 = {
+      T(0, 0, 5),     T(1, 2, 5),    T(1, 2, 1),     F(1, 2, -0.5), T(1, 2, 0.77), F(1, 2, -2),
+      T(1, 2, -0.73), F(1, 2, -3.5), T(1, 2, -2.23), F(1, 2, -4),   T(1, 2, 1)};
+  CHECK(moves(g73) == expected73);
+  // A machine's own parameter (a profile's [setup]) wins over its family's.
+  InterpreterOptions options;
+  options.dialect = find_dialect("fanuc");
+  options.chip_break_retract_mm = 1.0;
+  const Toolpath own = interpret(
+      make_source("t.nc", "G21\nG0 X0 Y0 Z5\nG99 G73 X1 Y2 Z-4 R1 Q1.5 F100\nG80\nM30\n"), options);
+  CHECK(moves(own)[4] == T(1, 2, 0.5));
+}
+
 TEST_CASE("G81 with L repeats under G91 steps from hole to hole") {
   const Toolpath p = run("G21\nG0 X0 Y0 Z5\nG91 G98 G81 X10 Y0 Z-4 R-2 L3 F100\nG90 G80\nM2\n");
   CHECK(errors(p) == 0);

@@ -29,6 +29,83 @@ TEST_CASE("dwell, tool change, spindle ramps and stops take their time") {
   CHECK(t.commands[9].duration_s == 0);
 }
 
+TEST_CASE("a measured spindle run-up: times from rest, differences between speeds") {
+  // As a VMC's logs show it: nothing below 3000 rpm (the at-speed window), 3 s to 7500,
+  // 7 s to 12000 (the constant-power range, where each rpm takes longer).
+  MachineProfile m = round_machine();
+  m.kinematics.spindle_run_up = {{3000, 0.0}, {7500, 3.0}, {12000, 7.0}};
+  std::vector<CanonCommand> program{
+      event(CanonKind::SpindleSpeed, 12000),
+      event(CanonKind::SpindleClockwise),        // 0 -> 12000
+      event(CanonKind::SpindleSpeed, 7500),      // down
+      event(CanonKind::SpindleSpeed, 9750),      // halfway up
+      event(CanonKind::SpindleCounterClockwise), // reversal
+      event(CanonKind::SpindleStop),
+      event(CanonKind::SpindleSpeed, 2000),
+      event(CanonKind::SpindleClockwise),
+      event(CanonKind::SpindleSpeed, 15000)}; // past the table: at the last segment's rate
+  const Timeline t = plan(program, m);
+  CHECK(t.commands[1].duration_s == doctest::Approx(7.0));
+  CHECK(t.commands[2].duration_s == doctest::Approx(4.0)); // runs down on the same curve
+  CHECK(t.commands[3].duration_s == doctest::Approx(2.0));
+  CHECK(t.commands[4].duration_s == doctest::Approx(2 * 5.0)); // 9750 -> 0 -> 9750 ccw
+  CHECK(t.commands[5].duration_s == doctest::Approx(5.0));
+  CHECK(t.commands[7].duration_s == 0); // inside the at-speed window
+  CHECK(t.commands[8].duration_s == doctest::Approx(7.0 + 3 * 4.0 / 4.5));
+}
+
+TEST_CASE("the tool-change sequence: the first change, a change to the tool in the spindle") {
+  MachineProfile m = round_machine(); // 5 s tool change
+  std::vector<CanonCommand> program{
+      event(CanonKind::ChangeTool, 3), event(CanonKind::ChangeTool, 3),
+      event(CanonKind::ChangeTool, 4), event(CanonKind::ChangeTool, 4)};
+  Timeline t = plan(program, m);
+  for (const TimedCommand& c : t.commands) // nothing said: every M6 the same
+    CHECK(c.duration_s == doctest::Approx(5.0));
+  m.kinematics.tool_change_first_extra_s = 2.0;
+  m.kinematics.tool_change_same_tool_s = 2.4;
+  t = plan(program, m);
+  CHECK(t.commands[0].duration_s == doctest::Approx(7.0));
+  CHECK(t.commands[1].duration_s == doctest::Approx(2.4));
+  CHECK(t.commands[2].duration_s == doctest::Approx(5.0));
+  CHECK(t.commands[3].duration_s == doctest::Approx(2.4));
+}
+
+TEST_CASE("a control's waits at M1, M0, M30 and coolant on, and a spindle the path does not wait for") {
+  MachineProfile m = round_machine(); // 0.5 s per 1000 rpm
+  std::vector<CanonCommand> program{event(CanonKind::SpindleSpeed, 2000),
+                                    event(CanonKind::SpindleClockwise),
+                                    event(CanonKind::FloodOn),
+                                    event(CanonKind::OptionalStop),
+                                    event(CanonKind::ProgramStop),
+                                    event(CanonKind::ProgramEnd)};
+  Timeline t = plan(program, m);
+  CHECK(t.commands[1].duration_s == doctest::Approx(1.0));
+  for (std::size_t i = 2; i < t.commands.size(); ++i)
+    CHECK(t.commands[i].duration_s == 0);
+  m.kinematics.waits = {6.9, 0.5, 6.4, 6.2}; // optional stop, program stop, end, coolant on
+  m.kinematics.spindle_waits = false;
+  t = plan(program, m);
+  CHECK(t.commands[1].duration_s == 0); // the spindle runs up while the path moves on
+  CHECK(t.commands[2].duration_s == doctest::Approx(6.2));
+  CHECK(t.commands[3].duration_s == doctest::Approx(6.9));
+  CHECK(t.commands[4].duration_s == doctest::Approx(0.5));
+  CHECK(t.commands[5].duration_s == doctest::Approx(6.4));
+}
+
+TEST_CASE("settling: rapids and feeds that end at rest, each with its own time") {
+  MachineProfile m = round_machine();
+  const std::vector<CanonCommand> program{
+      rapid(at(0, 0, 10), at(50, 0, 10)), event(CanonKind::Dwell, 1),
+      feed(at(50, 0, 10), at(50, 0, 0), 600), event(CanonKind::Dwell, 1)};
+  const Timeline plain = plan(program, m);
+  m.kinematics.settle_s = 0.16;
+  m.kinematics.settle_rapid_s = 0.075;
+  const Timeline settled = plan(program, m);
+  CHECK(settled.commands[0].duration_s - plain.commands[0].duration_s == doctest::Approx(0.075));
+  CHECK(settled.commands[2].duration_s - plain.commands[2].duration_s == doctest::Approx(0.16));
+}
+
 TEST_CASE("zero-length moves take zero time and keep their two samples") {
   const Timeline t =
       plan({feed(at(5, 5), at(5, 5), 600), rapid(at(5, 5), at(5, 5))}, round_machine());

@@ -266,6 +266,37 @@ TEST_CASE("which way +Z points: up, down, or left to each program") {
   CHECK(e.reason().find("\"down\"") != std::string::npos);
 }
 
+TEST_CASE("a control's timing: run-up curve, tool-change sequence, peck distances") {
+  const std::string generic = read(sample_path("generic-3axis.toml"));
+  const MachineProfile plain = parse_profile(generic, "g.toml");
+  CHECK(plain.kinematics.spindle_run_up.empty());
+  CHECK(plain.kinematics.tool_change_first_extra_s == 0);
+  CHECK_FALSE(plain.kinematics.tool_change_same_tool_s);
+  CHECK_FALSE(plain.setup.peck_clearance_mm);
+
+  const std::string timed =
+      with_line("spindle_ramp", "spindle_run_up_rpm_s = [[3000, 0], [7500, 3.0], [12000, 7]]\n"
+                                "tool_change_first_extra_s = 2\ntool_change_same_tool_s = 2.4");
+  const MachineProfile m = parse_profile(timed + "[setup]\npeck_clearance_in = 0.05\n"
+                                                 "chip_break_retract_mm = 0.5\n",
+                                         "t.toml");
+  REQUIRE(m.kinematics.spindle_run_up.size() == 3);
+  CHECK(m.kinematics.spindle_run_up[1] == std::pair{7500.0, 3.0});
+  CHECK(m.kinematics.spindle_s_per_1000rpm == 0); // the curve replaces the ramp
+  CHECK(m.kinematics.tool_change_first_extra_s == 2);
+  CHECK(m.kinematics.tool_change_same_tool_s == 2.4);
+  CHECK(*m.setup.peck_clearance_mm == doctest::Approx(1.27));
+  CHECK(*m.setup.chip_break_retract_mm == doctest::Approx(0.5));
+  // A curve that falls, or a run-down without a run-up, is refused at its key.
+  check_names_file_and_key(
+      refusal(with_line("spindle_ramp", "spindle_run_up_rpm_s = [[3000, 2], [7500, 1]]")),
+      "kinematics.spindle_run_up_rpm_s");
+  check_names_file_and_key(
+      refusal(with_line("spindle_ramp", "spindle_ramp_s_per_1000rpm = 1\n"
+                                        "spindle_run_down_rpm_s = [[3000, 1]]")),
+      "kinematics.spindle_run_down_rpm_s");
+}
+
 TEST_CASE("[setup]: work offsets, travel, Z home and power-on units") {
   const std::string generic = read(sample_path("generic-3axis.toml"));
   const MachineProfile plain = parse_profile(generic, "g.toml");

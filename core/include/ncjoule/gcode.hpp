@@ -128,6 +128,11 @@ struct Dialect {
   // A program streamed line by line with no end code (Marlin has no M2/M30 of its own): ending
   // at the end of the file is a note, not a warning.
   bool end_code_optional = false;
+  // Peck drilling's small moves, a control parameter each family documents its own default for:
+  // how far above the last peck G83 rapids back down after its retract to R, and how far G73
+  // (high-speed peck) backs off to break the chip. rs274ngc: 0.010 in for both.
+  double peck_clearance_mm = 0.254;
+  double chip_break_retract_mm = 0.254;
   std::string comment_open = "("; // what the annotator writes
   std::string comment_close = ")";
 };
@@ -333,6 +338,8 @@ struct InterpreterOptions : InterpreterLimits {
   // `default_cutter_compensation` (a machine's setting), else Control.
   std::optional<CutterCompMode> cutter_compensation;
   std::optional<CutterCompMode> default_cutter_compensation;
+  // The machine's own peck distances (its control's parameters), over the dialect's defaults.
+  std::optional<double> peck_clearance_mm, chip_break_retract_mm;
   // Programs the control holds outside this file (Fanuc/Haas O9xxx and probing macros, a
   // LinuxCNC subroutine file): asked for by name when a call finds no target in the file, as
   // the digits of the O-number ("9810") or the o<name> ("probe"); they return the program's

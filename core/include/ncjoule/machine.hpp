@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "ncjoule/gcode.hpp"
@@ -55,11 +56,39 @@ struct Kinematics {
   // gives no kinematics): a program that asks for more feed than they allow is told so.
   bool placeholder_rates = false;
   double tool_change_s = 0; // time of one M6
+  // The sequence around it, where a control's differs: the first change of a program takes
+  // longer (the magazine and arm start from their parked places), and an M6 for the tool
+  // already in the spindle runs a shorter sequence (or none). Not given: every M6 takes
+  // tool_change_s.
+  double tool_change_first_extra_s = 0;
+  std::optional<double> tool_change_same_tool_s;
   // The in-position check of a control that settles after every stop (Hurco, Haas and Fanuc
   // without their look-ahead modes): added to every move that ends at rest. 0 (LinuxCNC's
   // planner, which does not wait) by default.
   double settle_s = 0;
-  double spindle_s_per_1000rpm = 0;         // spindle ramp: seconds per 1000 rpm of speed change
+  // The same for rapids, where a control's differs (its rapids settle to a tighter window);
+  // not given: settle_s.
+  std::optional<double> settle_rapid_s;
+  // What a control spends on codes that move nothing, beyond what ncjoule times for them
+  // ([kinematics.waits], measured from a machine's logs): an M1 with the optional stop off
+  // still stops and checks, M30 rewinds and resets, coolant on may wait for pressure. 0: none.
+  struct Waits {
+    double optional_stop_s = 0; // M1, whether or not it stops for the operator
+    double program_stop_s = 0;  // M0, the control's part (the operator's wait is not predicted)
+    double program_end_s = 0;   // M2/M30 until the control reports the program complete
+    double coolant_on_s = 0;    // M7/M8: the path waits for the coolant
+  } waits;
+  double spindle_s_per_1000rpm = 0; // spindle ramp: seconds per 1000 rpm of speed change
+  // Whether the path waits for the spindle's ramp (LinuxCNC, Haas: "at speed"); a control that
+  // moves on while the spindle runs up (Hurco's M3 line ends with its rapid) does not.
+  bool spindle_waits = true;
+  // A spindle's run-up as measured: seconds from rest to each speed (rpm, s), rising in both;
+  // between the points and from rest to the first, linear; past the last, at the last
+  // segment's rate. A change between speeds takes the difference of their times; a stop or a
+  // reversal runs down on `spindle_run_down` (the run-up's times when empty). When given, it
+  // replaces spindle_s_per_1000rpm: a real spindle's run-up is not linear in speed (its motor
+  // has a constant-torque range, then a constant-power one where each rpm takes longer).
+  std::vector<std::pair<double, double>> spindle_run_up, spindle_run_down;
   ZDirection z_positive = ZDirection::Auto; // removal only: times do not depend on it
 };
 
@@ -171,6 +200,9 @@ struct WorkSetup {
   // Without work offsets: where machine X/Y home (machine X0 Y0) lies in the program's work
   // coordinates, so that a G53 X/Y move or a G28 X/Y return goes there; not given: at work X0 Y0.
   std::optional<std::pair<double, double>> xy_home_in_work_mm;
+  // Peck drilling's small moves as this machine's control is set (mm): how far above the last
+  // peck G83 rapids back down, how far G73 backs off; not given: the dialect's.
+  std::optional<double> peck_clearance_mm, chip_break_retract_mm;
 };
 
 // "G54" .. "G59", "G59.1" .. "G59.3" (any case) -> 1 .. 9; "G54.1 P1" .. "G54.1 P300" (Haas

@@ -71,6 +71,9 @@ bool is_note(const std::string& l) {
       // Licences, debug output and custom-code markers.
       "without warranties", "licensed under", "copyright", "movement_", "pycam_",
       "start custom gcode", "end custom gcode", "curr:", "part zero",
+      "command_", // a Fusion post's command constants, printed by its debug mode
+      "x min", "x max", "y min", "y max", "z min", "z max", // extents
+      "map:",                                               // a generator's dump of its settings
       // FreeCAD's block mode and toolchange markers, section markers.
       "block-expand", "block-enable", "path:", "begin toolchange", "post_amble", "pre_amble",
       "section end"};
@@ -96,6 +99,43 @@ bool is_bare_number(const std::string& l) {
     while (i < l.size() && std::isdigit(static_cast<unsigned char>(l[i])))
       ++i;
     if (i > digits && i == l.size()) return true;
+  }
+  return false;
+}
+
+// Generators' own markers and debug output: a setting ("path_direction = x", "Map: Allow Rapid
+// Z = true"), a condition ("xy != p_xy && z > 0: ..."), a section's bounds ("SECTION begin",
+// "CHANGE TOOL begin"), a section header ("[Process]") or a list's heading.
+bool is_marker(std::string_view text, const std::string& lower) {
+  if (lower.find("!=") != std::string::npos || lower.find("&&") != std::string::npos ||
+      lower.find("==") != std::string::npos)
+    return true;
+  auto ends_with = [&](std::string_view end) {
+    return lower.size() > end.size() &&
+           lower.compare(lower.size() - end.size(), end.size(), end) == 0;
+  };
+  const std::size_t eq = text.find(" = ");
+  if (eq != std::string::npos && eq > 0 &&
+      text.substr(0, eq).find_first_of(" \t") == std::string_view::npos)
+    return true;
+  if (eq != std::string::npos && (ends_with("= true") || ends_with("= false"))) return true;
+  // "Feed: Max Toolpath Speed = 1000": a setting and its number.
+  if (const std::size_t last = text.rfind(" = ");
+      last != std::string_view::npos && text.size() > last + 3 &&
+      text.substr(last + 3).find_first_not_of("0123456789.-+") == std::string_view::npos)
+    return true;
+  if (text.size() > 2 && text.front() == '[' && text.back() == ']') return true;
+  if (text.back() == ':') return true; // the heading of a list ("G1->G0 Mapping Properties:")
+  // A label and coordinates only ("start: 2.064,7.620").
+  if (const std::size_t colon = text.find(": ");
+      colon != std::string_view::npos &&
+      text.substr(colon + 2).find_first_not_of("0123456789.,-+ ") == std::string_view::npos)
+    return true;
+  for (std::string_view bound : {" begin", " end"}) {
+    if (!ends_with(bound)) continue;
+    // The words before it in capitals, as generators write their section names.
+    const std::string_view words = text.substr(0, text.size() - bound.size());
+    if (words.find_first_of("abcdefghijklmnopqrstuvwxyz") == std::string_view::npos) return true;
   }
   return false;
 }
@@ -152,7 +192,7 @@ std::string operation_name_in(std::string_view comment) {
   const bool digits_only =
       l.find_first_not_of("0123456789. ") == std::string::npos; // "14": a counter, no name
   if (text.empty() || digits_only || describes_tool(l) || is_code(text) || is_note(l) ||
-      is_bare_number(l))
+      is_bare_number(l) || is_marker(text, l))
     return {};
   return std::string(text);
 }

@@ -110,6 +110,26 @@ TEST_CASE("LinuxCNC's comment commands: a message names, debug and log output do
   CHECK(operation_name_in("MSG,").empty());
 }
 
+TEST_CASE("generators' markers and debug output name nothing; names with such words still do") {
+  CHECK(operation_name_in("path_direction = x").empty());
+  CHECK(operation_name_in("xy != p_xy && z > 0:Rapid to Start, Plunge").empty());
+  CHECK(operation_name_in("COMMAND_COOLANT_OFF").empty());
+  CHECK(operation_name_in("SECTION begin").empty());
+  CHECK(operation_name_in("START end").empty());
+  CHECK(operation_name_in("CHANGE TOOL begin").empty());
+  CHECK(operation_name_in("[Process]").empty());
+  CHECK(operation_name_in("Map: Allow Rapid Z = true").empty());
+  CHECK(operation_name_in("X Min: 7.588 - X Max: 226.309").empty());
+  CHECK(operation_name_in("start: 2.064,7.620").empty());
+  CHECK(operation_name_in("G1->G0 Mapping Properties:").empty());
+  CHECK(operation_name_in("Feed: Max Toolpath Speed = 1000").empty());
+  CHECK(operation_name_in("Map: SafeZ Mode = Retract : default").empty());
+  CHECK(operation_name_in("Pocket: Layer 6") == "Pocket: Layer 6");
+  CHECK(operation_name_in("2D Contour tabs") == "2D Contour tabs");
+  CHECK(operation_name_in("ROUGH_POCKET") == "ROUGH_POCKET");
+  CHECK(operation_name_in("Finish the end") == "Finish the end");
+}
+
 TEST_CASE("a name on a line with only a block number: N10 (Face1)") {
   // Fusion's Tormach and Haas posts number every block, the operation's comment too.
   const Estimate e = run("N5 G21 G90\nN10 (Face1)\nN15 T1 M6\nN20 S1000 M3\nN25 G1 X5 F100\n"

@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
+  ccache                        # the package's build (scripts/package.sh) reuses build/'s objects
   libeigen3-dev libtbb-dev libceres-dev libspdlog-dev libfmt-dev doctest-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   linuxcnc-uspace               # rs274, the reference G-code interpreter used by the tests

@@ -110,7 +110,7 @@ TEST_CASE("LinuxCNC's comment commands: a message names, debug and log output do
   CHECK(operation_name_in("MSG,").empty());
 }
 
-TEST_CASE("generators' markers and debug output name nothing; names with such words still do") {
+TEST_CASE("generators' markers and debug output name nothing, names with such words still do") {
   CHECK(operation_name_in("path_direction = x").empty());
   CHECK(operation_name_in("xy != p_xy && z > 0:Rapid to Start, Plunge").empty());
   CHECK(operation_name_in("COMMAND_COOLANT_OFF").empty());

@@ -16,9 +16,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-out=${NCJOULE_WIN_DIR:-build-win}
-mkdir -p "$out"
-out=$(cd "$out" && pwd)
+. scripts/lib.sh # (the folder is the repository's root here)
+out=$(windows_build_dir)
 deps=$out/deps
 prefix=$deps/prefix # the Windows builds of the libraries, installed
 jobs=${JOBS:-$(nproc)}
@@ -27,7 +26,6 @@ sudo_cmd=()
 if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
 
 # Each stage is timed; the times are printed at the end (and when a stage fails).
-. scripts/lib.sh # (the folder is the repository's root here)
 trap 'print_stage_times build-windows.sh' EXIT
 
 stage "Debian packages"

@@ -40,3 +40,11 @@ print_stage_times() {
   done
   printf '  %-48s %7.1f s\n' "total" "$total" >&2
 }
+
+# The Windows build's folder ($NCJOULE_WIN_DIR, default build-win), made if need be, as an
+# absolute path: what build-windows.sh writes and test-windows.sh reads.
+windows_build_dir() {
+  local dir=${NCJOULE_WIN_DIR:-build-win}
+  mkdir -p "$dir"
+  (cd "$dir" && pwd)
+}

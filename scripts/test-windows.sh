@@ -15,12 +15,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
-out=${NCJOULE_WIN_DIR:-build-win}
-mkdir -p "$out"
-out=$(cd "$out" && pwd)
+. scripts/lib.sh # (the folder is the repository's root here)
+out=$(windows_build_dir)
 corpus=${1:+$(cd "$1" && pwd)}
 
-. scripts/lib.sh # (the folder is the repository's root here)
 results=()
 print_summary() {
   print_stage_times test-windows.sh

@@ -12,6 +12,20 @@ namespace {
 
 // A rapid removing less than this is grazing within rounding, not a collision.
 constexpr double kCollisionMinMm3 = 1e-6;
+// A step removing less than this (a cube of 1 um side) removes nothing: what is left is the
+// rounding of the stock model's arithmetic, which differs between C libraries (a glancing step
+// gives 1.7e-16 mm^3 with one and 2.5e-16 or 0 with another). Counting it would make the block
+// a cut on one system and air on the other.
+constexpr double kRoundingMm3 = 1e-9;
+
+// A sample's position to the nearest nanometre. The positions of arcs come from sin and cos,
+// whose last bits differ between C libraries; a grid column whose centre lies on the tool's
+// edge would be cut on one system and not on the other. Taken to a nanometre first, the same
+// program cuts the same columns everywhere.
+Point3 to_nanometre(double x, double y, double z) {
+  auto nm = [](double v) { return std::nearbyint(v * 1e6) * 1e-6; };
+  return Point3(nm(x), nm(y), nm(z));
+}
 
 std::string format_box(const Box3& b) {
   char buf[160];
@@ -317,8 +331,8 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     for (std::size_t s = 0; s + 1 < samples->size(); ++s) {
       const Pose& a = (*samples)[s].position;
       const Pose& b = (*samples)[s + 1].position;
-      steps_.push_back(
-          {&tool->second, Point3(a.x, a.y, z_sign * a.z), Point3(b.x, b.y, z_sign * b.z)});
+      steps_.push_back({&tool->second, to_nanometre(a.x, a.y, z_sign * a.z),
+                        to_nanometre(b.x, b.y, z_sign * b.z)});
     }
     out[k].step_volume_mm3.resize(samples->size() - 1);
   }
@@ -334,7 +348,7 @@ void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
     const bool depths = !std::isnan(cut_tops_[first[k]]);
     if (depths) r.step_depth_mm.resize(r.step_volume_mm3.size());
     for (std::size_t s = 0; s < r.step_volume_mm3.size(); ++s) {
-      const double v = volumes_[first[k] + s];
+      const double v = volumes_[first[k] + s] < kRoundingMm3 ? 0.0 : volumes_[first[k] + s];
       if (depths) {
         const RemovalStep& step = steps_[first[k] + s];
         const double depth = cut_tops_[first[k] + s] - std::min(step.from.z(), step.to.z());

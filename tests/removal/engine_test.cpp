@@ -180,3 +180,26 @@ TEST_CASE("grid and sample step helpers") {
   CHECK(g.ny == 20);
   CHECK(g.dx * g.nx == doctest::Approx(155));
 }
+
+TEST_CASE("a step grazing the stock within rounding removes nothing, a thin real cut counts") {
+  // A pass 1e-13 mm into the top removes 6e-12 mm^3 by the geometry: below the stock model's
+  // rounding, which C libraries do differently. It is air, on every system; a pass 1 um deep
+  // (6e-3 mm^3 over 10 mm) is a cut.
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 6)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(300).rapid(5, 0, 2).feed(5, 0, -1e-13).feed(15, 0, -1e-13);
+  p.rapid(15, 0, 2).rapid(5, 5, 2).feed(5, 5, -1e-3).feed(15, 5, -1e-3).rapid(15, 5, 2);
+  for (const EngineKind engine : {EngineKind::Dexel, EngineKind::Voxel}) {
+    CAPTURE(engine_name(engine));
+    RemovalOptions o;
+    o.engine = engine;
+    const RemovalResult r =
+        simulate_removal(p.commands(), constant_speed_timeline(p.commands(), 0.1), tools,
+                         box_stock({0, -10, -5, 20, 10, 0}), o);
+    CHECK(r.commands[1].removed_mm3 == 0);
+    CHECK(r.commands[2].removed_mm3 == 0);
+    for (const double v : r.commands[2].step_volume_mm3)
+      CHECK(v == 0);
+    CHECK(r.commands[6].removed_mm3 > 1e-3);
+  }
+}

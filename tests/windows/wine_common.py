@@ -61,8 +61,10 @@ def run_wine_cmd(words, cwd=None, env=None):
                           cwd=cwd, env=env)
 
 
-def compare_numbers(a, b, where, rel=1e-9, ignore_strings=False):
-    """Differences between two JSON documents: numbers beyond `rel`, anything else unequal
+def compare_numbers(a, b, where, rel=1e-9, zero=1e-12, ignore_strings=False):
+    """Differences between two JSON documents: numbers beyond `rel` (or, near zero, beyond
+    `zero` in their own unit: a speed of 4e-15 mm/s on one system and 0 on the other are both a
+    stop, the C libraries round differently), anything else unequal
     (but the names of files, which are written as each system spells them). Returns (differences, how many numbers were compared, of which time or energy)."""
     differences = []
     counts = [0, 0]
@@ -77,7 +79,7 @@ def compare_numbers(a, b, where, rel=1e-9, ignore_strings=False):
             if "time" in key or "energy" in key or key.endswith("_s") or key.endswith("_j"):
                 counts[1] += 1
             if not (x == y or (math.isfinite(x) and math.isfinite(y) and
-                               abs(x - y) <= rel * max(abs(x), abs(y)))):
+                               abs(x - y) <= max(rel * max(abs(x), abs(y)), zero))):
                 differences.append("%s: %.17g != %.17g" % (path, x, y))
         elif isinstance(x, dict) and isinstance(y, dict):
             if sorted(x) != sorted(y):

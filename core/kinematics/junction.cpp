@@ -8,7 +8,8 @@ namespace ncjoule::kinematics_detail {
 double junction_speed(const MoveLimits& before, const MoveLimits& after, PathMode mode,
                       double tolerance, const Kinematics& machine) {
   if (machine.exact_stop_every_block || mode != PathMode::Continuous) return 0;
-  const double cap = std::min(before.vmax, after.vmax);
+  double cap = std::min(before.vmax, after.vmax);
+  if (!before.traverse && !after.traverse) cap *= machine.transition_speed_ratio;
   if (machine.junction_rule == JunctionRule::NextFeed) return cap;
   // Moves of rotary axes only have no direction in space: stop, as their tangents are unknown.
   if (before.rotary_only || after.rotary_only) return 0;

@@ -108,6 +108,7 @@ void rotary_caps(Caps& caps, const CanonCommand& move, const Kinematics& k, doub
 MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& warnings) {
   MoveLimits m;
   const bool rapid = move.kind == CanonKind::Traverse;
+  m.traverse = rapid;
   const bool s_curve = k.feed_profile == FeedProfile::SCurve;
   Caps caps;
   auto axis = [&](int i, double share) {

@@ -24,6 +24,7 @@ struct MoveLimits {
   Vec3 dir_in = Vec3::Zero(),
        dir_out = Vec3::Zero(); // unit tangents of the linear axes at the start and end
   bool rotary_only = false;
+  bool traverse = false; // a rapid (G0)
 };
 
 // Limits of a Traverse, Feed, Arc or Probe command. Moves too short to matter get length 0.

@@ -79,6 +79,11 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
     t.fail("spindle_run_down_rpm_s", "needs spindle_run_up_rpm_s (a run-down alone is not used)");
   k.settle_s = t.optional_quantity("settle", Dimension::Time, Range::NonNegative).value_or(0.0);
   k.settle_rapid_s = t.optional_quantity("settle_rapid", Dimension::Time, Range::NonNegative);
+  if (const auto ratio = t.optional_number("transition_speed_ratio", Range::Positive)) {
+    if (*ratio > 1)
+      t.fail("transition_speed_ratio", "must be above 0 and at most 1 (a fraction of the feed)");
+    k.transition_speed_ratio = *ratio;
+  }
   if (auto waits = t.optional_table("waits")) {
     read_source(*waits, "kinematics.waits", sources);
     auto wait = [&](const char* stem) {
@@ -113,6 +118,9 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   if (k.junction_rule == JunctionRule::LinuxCnc29 && k.feed_profile == FeedProfile::SCurve)
     t.fail("feed_profile", "junction_rule \"linuxcnc-2.9\" plans trapezoids, as LinuxCNC 2.9 "
                            "does (it has no jerk limit): use feed_profile = \"trapezoid\"");
+  if (k.junction_rule == JunctionRule::LinuxCnc29 && k.transition_speed_ratio < 1)
+    t.fail("transition_speed_ratio", "junction_rule \"linuxcnc-2.9\" takes its transitions as "
+                                     "LinuxCNC 2.9 does: leave transition_speed_ratio out");
   if (auto rotary = t.optional_table("rotary")) {
     k.rotary_rapid_deg_s = rotary->quantity("rapid", Dimension::AngularSpeed, Range::Positive);
     k.rotary_accel_deg_s2 = rotary->quantity("accel", Dimension::AngularAccel, Range::Positive);

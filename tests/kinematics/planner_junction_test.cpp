@@ -183,3 +183,24 @@ TEST_CASE("a line running tangentially into an arc keeps its speed, in XY and in
   const Timeline reversed = plan({feed(at(0, 0), at(10, 0), f), xz}, round_machine());
   CHECK(reversed.commands[0].exit_speed_mm_s == 0);
 }
+
+TEST_CASE("transition_speed_ratio: every transition between feed blocks slows to a share of F") {
+  // Two collinear feeds at 12.7 mm/s run through at full speed by the corner rule; a control that
+  // slows at every block end takes the transition at a quarter of the feed. At the 90-degree
+  // corner the corner rule's lower speed stays; into a rapid the ratio does not apply.
+  MachineProfile m = round_machine();
+  const std::vector<CanonCommand> straight{feed(at(0, 0), at(50, 0), 762),
+                                           feed(at(50, 0), at(100, 0), 762)};
+  REQUIRE(plan(straight, m).commands[0].exit_speed_mm_s == doctest::Approx(12.7));
+  m.kinematics.transition_speed_ratio = 0.25;
+  const Timeline t = plan(straight, m);
+  CHECK(t.commands[0].exit_speed_mm_s == doctest::Approx(0.25 * 12.7));
+  const double a = 1000;
+  CHECK(t.total_s == doctest::Approx(trapezoid_time(0, 3.175, 12.7, 50, a) +
+                                     trapezoid_time(3.175, 0, 12.7, 50, a)));
+
+  const Timeline sharp = plan(corner(PathMode::Continuous, 0.001, 6000), m);
+  CHECK(sharp.commands[0].exit_speed_mm_s == doctest::Approx(corner_speed(a, 0.001)));
+  const Timeline to_rapid = plan({feed(at(0, 0), at(50, 0), 762), rapid(at(50, 0), at(100, 0))}, m);
+  CHECK(to_rapid.commands[0].exit_speed_mm_s == doctest::Approx(12.7));
+}

@@ -297,6 +297,22 @@ TEST_CASE("a control's timing: run-up curve, tool-change sequence, peck distance
       "kinematics.spindle_run_down_rpm_s");
 }
 
+TEST_CASE("transition_speed_ratio: a share of the feed, and not with the LinuxCNC rule") {
+  const std::string generic = read(sample_path("generic-3axis.toml"));
+  CHECK(parse_profile(generic, "g.toml").kinematics.transition_speed_ratio == 1);
+  auto tolerance_rule = [](const std::string& ratio) {
+    return with_line("junction_rule",
+                     "junction_rule = \"tolerance\"\ntransition_speed_ratio = " + ratio);
+  };
+  CHECK(parse_profile(tolerance_rule("0.13"), "t.toml").kinematics.transition_speed_ratio == 0.13);
+  for (const char* bad : {"0", "1.5", "-0.2"})
+    check_names_file_and_key(refusal(tolerance_rule(bad)), "kinematics.transition_speed_ratio");
+  // generic-3axis follows LinuxCNC 2.9, whose transitions are its own.
+  check_names_file_and_key(
+      refusal(with_line("tool_change_s", "tool_change_s = 6.0\ntransition_speed_ratio = 0.5")),
+      "kinematics.transition_speed_ratio");
+}
+
 TEST_CASE("[setup]: work offsets, travel, Z home and power-on units") {
   const std::string generic = read(sample_path("generic-3axis.toml"));
   const MachineProfile plain = parse_profile(generic, "g.toml");

@@ -69,6 +69,11 @@ struct Kinematics {
   // The same for rapids, where a control's differs (its rapids settle to a tighter window);
   // not given: settle_s.
   std::optional<double> settle_rapid_s;
+  // The highest speed at the transition from one feed block to the next, as a fraction of the
+  // lower of their two speeds, whatever the angle between them: a control that slows at every
+  // block end even on a straight or tangent path (a Hurco or a Fanuc without its high-speed
+  // look-ahead mode). 1: the corner rule alone (LinuxCNC). Rules Tolerance and NextFeed only.
+  double transition_speed_ratio = 1;
   // What a control spends on codes that move nothing, beyond what ncjoule times for them
   // ([kinematics.waits], measured from a machine's logs): an M1 with the optional stop off
   // still stops and checks, M30 rewinds and resets, coolant on may wait for pressure. 0: none.

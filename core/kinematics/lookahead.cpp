@@ -6,7 +6,7 @@
 
 namespace ncjoule::kinematics_detail {
 
-std::size_t plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
+std::size_t plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end, std::size_t hold) {
   const std::size_t from = front.final_items;
   const std::size_t end = items.size();
   if (from >= end) return 0;
@@ -30,7 +30,8 @@ std::size_t plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end) {
       fixed = i;
     next_entry = m.entry;
   }
-  const std::size_t final_end = at_end ? end : fixed;
+  const std::size_t final_end =
+      at_end ? end : std::max(from, std::min(fixed, end - std::min(end, hold)));
   // Forward, over what is final: no faster than each item can reach from its entry speed.
   double previous_exit = front.exit_before;
   for (std::size_t i = from; i < final_end; ++i) {

@@ -56,8 +56,11 @@ struct SpeedPlanFront {
 
 // Plans the items from front.final_items on, with the path ending at rest after the last item,
 // and moves the front on: to the end when `at_end`, else up to the last item whose entry speed
-// its own limits (junction into it, its speed limit) fix, whatever the items after it do.
-// Returns the number of items its passes visited (the caller keeps the total linear).
-std::size_t plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end);
+// its own limits (junction into it, its speed limit) fix, whatever the items after it do, and
+// never into the last `hold` items (a control's look-ahead depth: their exits still wait for the
+// items after them). Returns the number of items its passes visited (the caller keeps the
+// total linear).
+std::size_t plan_speeds(ItemWindow& items, SpeedPlanFront& front, bool at_end,
+                        std::size_t hold = 0);
 
 } // namespace ncjoule::kinematics_detail

@@ -115,6 +115,7 @@ struct Planner::Impl {
   std::size_t off_path = 0;    // commands since the last chained move
   PathMode previous_mode = PathMode::ExactPath;
   double previous_tolerance = 0;
+  double lookahead_mm = 0; // length of the last k.lookahead_blocks items (the control's view)
   // Step 3's running state.
   double clock = 0;
   double path_speed = 0; // speed of the path at the current point (for zero-length moves)
@@ -200,6 +201,18 @@ void Planner::Impl::limit_and_chain(WaitingCommand& w) {
         junction_speed(previous_limits, limits, previous_mode, previous_tolerance, k);
   w.plan = MovePlan{MoveTiming::Chained, 1, static_cast<std::uint32_t>(items.size())};
   items.push_back(SpeedPlanItem{limits.length, limits.vmax, limits.accel, limits.jerk});
+  if (const std::size_t depth = k.lookahead_blocks; depth > 0) {
+    // The item `depth` before this one leaves the control's view; at its end the control has
+    // read up to this one and must be able to stop by this one's end. It is not final yet
+    // (plan_speeds holds the last `depth` items back).
+    lookahead_mm += limits.length;
+    if (items.size() > depth) {
+      SpeedPlanItem& leaving = items[items.size() - 1 - depth];
+      lookahead_mm -= leaving.length;
+      leaving.junction_after = std::min(
+          leaving.junction_after, reachable_speed(0, lookahead_mm, leaving.accel, leaving.jerk));
+    }
+  }
   previous_limits = limits;
   previous_flows = true;
   previous_mode = c.state.path_mode;
@@ -224,7 +237,7 @@ void Planner::Impl::come_to_rest() {
 }
 
 void Planner::Impl::look_ahead(bool at_end) {
-  work.items_planned += plan_speeds(items, front, at_end);
+  work.items_planned += plan_speeds(items, front, at_end, k.lookahead_blocks);
 }
 
 // Whether a command's timing is final: a move's speeds are, and so is what LinuxCNC's task adds

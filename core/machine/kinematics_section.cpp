@@ -84,6 +84,11 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
       t.fail("transition_speed_ratio", "must be above 0 and at most 1 (a fraction of the feed)");
     k.transition_speed_ratio = *ratio;
   }
+  if (const auto blocks = t.optional_number("lookahead_blocks", Range::Positive)) {
+    if (*blocks != std::floor(*blocks) || *blocks > 1e6)
+      t.fail("lookahead_blocks", "must be a whole number of blocks, 1 to 1000000");
+    k.lookahead_blocks = static_cast<std::size_t>(*blocks);
+  }
   if (auto waits = t.optional_table("waits")) {
     read_source(*waits, "kinematics.waits", sources);
     auto wait = [&](const char* stem) {
@@ -118,6 +123,9 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   if (k.junction_rule == JunctionRule::LinuxCnc29 && k.feed_profile == FeedProfile::SCurve)
     t.fail("feed_profile", "junction_rule \"linuxcnc-2.9\" plans trapezoids, as LinuxCNC 2.9 "
                            "does (it has no jerk limit): use feed_profile = \"trapezoid\"");
+  if (k.junction_rule == JunctionRule::LinuxCnc29 && k.lookahead_blocks > 0)
+    t.fail("lookahead_blocks", "junction_rule \"linuxcnc-2.9\" plans as LinuxCNC 2.9 does: "
+                               "leave lookahead_blocks out");
   if (k.junction_rule == JunctionRule::LinuxCnc29 && k.transition_speed_ratio < 1)
     t.fail("transition_speed_ratio", "junction_rule \"linuxcnc-2.9\" takes its transitions as "
                                      "LinuxCNC 2.9 does: leave transition_speed_ratio out");

@@ -204,3 +204,32 @@ TEST_CASE("transition_speed_ratio: every transition between feed blocks slows to
   const Timeline to_rapid = plan({feed(at(0, 0), at(50, 0), 762), rapid(at(50, 0), at(100, 0))}, m);
   CHECK(to_rapid.commands[0].exit_speed_mm_s == doctest::Approx(12.7));
 }
+
+TEST_CASE("lookahead_blocks: at each block's end the control can stop within the blocks it read") {
+  // 100 collinear blocks of 0.1 mm at F6000 (100 mm/s), 1 m/s^2: seen whole, the chain
+  // accelerates as one move (a peak of 70.7 mm/s at 5 mm). Reading 5 blocks beyond the one it
+  // runs, the control ends each block at the speed that stops in those 0.5 mm, 31.6 mm/s; within
+  // a block it may go faster (it has 0.6 mm ahead at the block's start) and be back at 31.6 by
+  // its end: each middle block is a small trapezoid from 31.6 to 31.6 mm/s.
+  std::vector<CanonCommand> program;
+  for (int i = 0; i < 100; ++i)
+    program.push_back(feed(at(0.1 * i, 0), at(0.1 * (i + 1), 0), 6000));
+  MachineProfile m = round_machine();
+  const Timeline whole = plan(program, m);
+  CHECK(whole.commands[49].exit_speed_mm_s == doctest::Approx(std::sqrt(2 * 1000 * 5.0)));
+  m.kinematics.lookahead_blocks = 5;
+  const Timeline five = plan(program, m);
+  const double v = std::sqrt(2 * 1000 * 0.5);
+  double middle = 0;
+  for (int i = 10; i < 90; ++i) {
+    CHECK(five.commands[i].exit_speed_mm_s == doctest::Approx(v));
+    middle += five.commands[i].duration_s;
+  }
+  const double peak = std::sqrt(v * v + 1000 * 0.1); // up over 0.05 mm and down over 0.05 mm
+  CHECK(middle == doctest::Approx(80 * trapezoid_time(v, v, peak, 0.1, 1000)));
+  CHECK(middle > 80 * 0.1 / 70.7); // slower than the whole path's peak allows
+  CHECK(five.total_s > 1.2 * whole.total_s);
+  // More blocks than the program has: the path is seen to its end, as without a limit.
+  m.kinematics.lookahead_blocks = 200;
+  CHECK(plan(program, m).total_s == doctest::Approx(whole.total_s));
+}

@@ -313,6 +313,21 @@ TEST_CASE("transition_speed_ratio: a share of the feed, and not with the LinuxCN
       "kinematics.transition_speed_ratio");
 }
 
+TEST_CASE("lookahead_blocks: a whole number of blocks, and not with the LinuxCNC rule") {
+  CHECK(parse_profile(read(sample_path("generic-3axis.toml")), "g.toml")
+            .kinematics.lookahead_blocks == 0);
+  auto tolerance_rule = [](const std::string& blocks) {
+    return with_line("junction_rule",
+                     "junction_rule = \"tolerance\"\nlookahead_blocks = " + blocks);
+  };
+  CHECK(parse_profile(tolerance_rule("80"), "t.toml").kinematics.lookahead_blocks == 80);
+  for (const char* bad : {"0", "2.5", "-3", "\"80\""})
+    check_names_file_and_key(refusal(tolerance_rule(bad)), "kinematics.lookahead_blocks");
+  check_names_file_and_key(
+      refusal(with_line("tool_change_s", "tool_change_s = 6.0\nlookahead_blocks = 80")),
+      "kinematics.lookahead_blocks");
+}
+
 TEST_CASE("[setup]: work offsets, travel, Z home and power-on units") {
   const std::string generic = read(sample_path("generic-3axis.toml"));
   const MachineProfile plain = parse_profile(generic, "g.toml");

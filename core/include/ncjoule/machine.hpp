@@ -74,6 +74,11 @@ struct Kinematics {
   // block end even on a straight or tangent path (a Hurco or a Fanuc without its high-speed
   // look-ahead mode). 1: the corner rule alone (LinuxCNC). Rules Tolerance and NextFeed only.
   double transition_speed_ratio = 1;
+  // How many blocks the control reads ahead of the one it runs: at the end of a block it must
+  // be able to stop within the next lookahead_blocks, the last it has read. Matters on chains of
+  // short blocks at high feed. 0: the whole path (ncjoule's planner sees all of it). Rules
+  // Tolerance and NextFeed only.
+  std::size_t lookahead_blocks = 0;
   // What a control spends on codes that move nothing, beyond what ncjoule times for them
   // ([kinematics.waits], measured from a machine's logs): an M1 with the optional stop off
   // still stops and checks, M30 rewinds and resets, coolant on may wait for pressure. 0: none.

@@ -257,7 +257,9 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
           std::max(cells(grid_) / cell_limit,
                    double(estimated_removal_memory(options.engine, grid_, spec.kind, crossings_)) /
                        double(budget));
-      spacing *= std::max(1.01, std::pow(over, power));
+      // To the nanometre: std::pow differs in the last bit between C libraries, and so would
+      // the whole grid.
+      spacing = std::nearbyint(spacing * std::max(1.01, std::pow(over, power)) * 1e6) * 1e-6;
       grid_ = grid_at(spacing);
     }
     diag(Severity::Note, 0,

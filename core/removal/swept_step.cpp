@@ -13,6 +13,14 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Below this XY length a step is treated as a plunge (the tool axis does not move sideways).
 constexpr double kMinXyLength = 1e-9;
 
+// sqrt(x^2 + y^2) as IEEE arithmetic gives it, the same on every C library: std::hypot is a
+// library function (glibc's and MinGW's differ in the last bit), and a column whose centre lies
+// on the tool's edge would be inside on one system and outside on the other. No overflow at the
+// lengths of a machine's travel.
+double planar_length(double x, double y) {
+  return std::sqrt(x * x + y * y);
+}
+
 // Minimum of a convex function on [a, b] by golden-section search, end points included.
 template <class F> double convex_min(F&& f, double a, double b) {
   double best = std::min(f(a), f(b));
@@ -39,7 +47,7 @@ SweptStep::SweptStep(const Tool& tool, const Point3& from, const Point3& to)
     : tool_(tool), ax_(from.x()), ay_(from.y()), az_(from.z()), dz_(to.z() - from.z()),
       radius_(tool.radius()), reach_(tool.reach_radius()), zlow_(std::min(from.z(), to.z())) {
   const double dx = to.x() - from.x(), dy = to.y() - from.y();
-  len_ = std::hypot(dx, dy);
+  len_ = planar_length(dx, dy);
   if (len_ > kMinXyLength) {
     ux_ = dx / len_, uy_ = dy / len_;
     slope_ = dz_ / len_;
@@ -51,7 +59,7 @@ SweptStep::SweptStep(const Tool& tool, const Point3& from, const Point3& to)
     shank_height_ = tool.cutting_length_mm;
   }
   if (tool.shape == ToolShape::Drill || tool.shape == ToolShape::Chamfer)
-    tan_half_ = std::tan(tool.tip_angle_deg * std::numbers::pi / 360.0);
+    tan_half_ = tool.tan_half_tip_angle();
   xmin_ = std::min(from.x(), to.x()) - reach_, xmax_ = std::max(from.x(), to.x()) + reach_;
   ymin_ = std::min(from.y(), to.y()) - reach_, ymax_ = std::max(from.y(), to.y()) + reach_;
 }
@@ -77,7 +85,7 @@ double SweptStep::lowest_bottom(double x, double y, bool shank) const {
   const double lift = shank ? shank_height_ : 0.0;
   const double qx = x - ax_, qy = y - ay_;
   if (len_ == 0) { // plunge or retract: the lowest tip position is the lowest bottom
-    const double r = std::hypot(qx, qy);
+    const double r = planar_length(qx, qy);
     if (r > R) return kInf;
     return zlow_ + lift + (shank ? 0.0 : profile_height(r));
   }
@@ -128,7 +136,7 @@ bool SweptStep::contains(double x, double y, double z) const {
   const double qx = x - ax_, qy = y - ay_;
   // Horizontal distance from the tool axis to the point when the tip is at parameter t (mm of
   // XY travel along the step).
-  auto distance = [&](double t) { return std::hypot(qx - t * ux_, qy - t * uy_); };
+  auto distance = [&](double t) { return planar_length(qx - t * ux_, qy - t * uy_); };
   auto closest = [&](double t0, double t1) { // min distance for t in [t0, t1]
     return distance(std::clamp(qx * ux_ + qy * uy_, t0, t1));
   };
@@ -151,7 +159,7 @@ bool SweptStep::contains(double x, double y, double z) const {
   if (shank_radius_ > 0 && above_tip(shank_height_, t0, t1) && closest(t0, t1) <= shank_radius_)
     return true;
   if (!above_tip(0, t0, t1)) return false;
-  if (len_ == 0) return std::hypot(qx, qy) <= tool_.section_radius(z - zlow_);
+  if (len_ == 0) return planar_length(qx, qy) <= tool_.section_radius(z - zlow_);
   if (slope_ == 0) return closest(t0, t1) <= tool_.section_radius(z - az_);
   // distance - section radius is convex in t (distance convex, section radius concave in height).
   auto gap = [&](double t) { return distance(t) - tool_.section_radius(z - (az_ + t * slope_)); };

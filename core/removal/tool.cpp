@@ -11,15 +11,15 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-double half_angle_rad(const Tool& tool) {
-  return tool.tip_angle_deg * std::numbers::pi / 360.0;
-}
-
 bool has_wider_shank(const Tool& tool) {
   return tool.cutting_length_mm > 0 && tool.shank_diameter_mm > tool.diameter_mm;
 }
 
 } // namespace
+
+double Tool::tan_half_tip_angle() const {
+  return std::nearbyint(std::tan(tip_angle_deg * std::numbers::pi / 360.0) * 1e12) * 1e-12;
+}
 
 double Tool::reach_radius() const {
   return has_wider_shank(*this) ? shank_diameter_mm / 2 : radius();
@@ -45,10 +45,10 @@ double Tool::envelope_height(double r) const {
     return rc - std::sqrt(std::max(0.0, rc * rc - d * d));
   }
   case ToolShape::Drill:
-    return r / std::tan(half_angle_rad(*this));
+    return r / tan_half_tip_angle();
   case ToolShape::Chamfer: {
     const double rt = tip_diameter_mm / 2;
-    return r <= rt ? 0 : (r - rt) / std::tan(half_angle_rad(*this));
+    return r <= rt ? 0 : (r - rt) / tan_half_tip_angle();
   }
   }
   return 0;
@@ -68,9 +68,9 @@ double Tool::section_radius(double t) const {
     return (R - rc) + std::sqrt(std::max(0.0, rc * rc - (rc - t) * (rc - t)));
   }
   case ToolShape::Drill:
-    return std::min(R, t * std::tan(half_angle_rad(*this)));
+    return std::min(R, t * tan_half_tip_angle());
   case ToolShape::Chamfer:
-    return std::min(R, tip_diameter_mm / 2 + t * std::tan(half_angle_rad(*this)));
+    return std::min(R, tip_diameter_mm / 2 + t * tan_half_tip_angle());
   }
   return R;
 }

@@ -46,6 +46,9 @@ struct Tool {
   // The inverse: radius of the tool's cross-section at height t above the tip (cutter part
   // only, capped at radius()); negative below the tip.
   double section_radius(double t) const;
+  // tan(tip_angle_deg / 2) of a drill or chamfer tool, to 1e-12: the same on every C library
+  // (their tan differs in the last bit, and the stock's columns on a cone's edge with it).
+  double tan_half_tip_angle() const;
 };
 
 std::string_view tool_shape_name(ToolShape shape); // "flat end mill", ...

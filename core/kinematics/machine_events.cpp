@@ -40,8 +40,11 @@ double MachineEvents::tool_change(int tool) {
   const bool first = spindle_tool_ < 0;
   const bool same = tool == spindle_tool_;
   spindle_tool_ = tool;
-  if (same && machine_.tool_change_same_tool_s) return *machine_.tool_change_same_tool_s;
-  return machine_.tool_change_s + (first ? machine_.tool_change_first_extra_s : 0.0);
+  // A control with a stop sequence leaves the spindle at rest: the next M3 runs it up from there.
+  const double stop = running_rpm_ != 0 ? machine_.tool_change_spindle_stop_s : 0.0;
+  if (stop > 0) running_rpm_ = 0;
+  if (same && machine_.tool_change_same_tool_s) return *machine_.tool_change_same_tool_s + stop;
+  return machine_.tool_change_s + (first ? machine_.tool_change_first_extra_s : 0.0) + stop;
 }
 
 EventTiming MachineEvents::time(const CanonCommand& c) {

@@ -67,6 +67,9 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
           .value_or(0.0);
   k.tool_change_same_tool_s =
       t.optional_quantity("tool_change_same_tool", Dimension::Time, Range::NonNegative);
+  k.tool_change_spindle_stop_s =
+      t.optional_quantity("tool_change_spindle_stop", Dimension::Time, Range::NonNegative)
+          .value_or(0.0);
   k.spindle_run_up = read_spindle_times(t, "spindle_run_up_rpm_s");
   k.spindle_run_down = read_spindle_times(t, "spindle_run_down_rpm_s");
   // A measured run-up replaces the straight ramp, which is then not needed.

@@ -71,7 +71,24 @@ TEST_CASE("the tool-change sequence: the first change, a change to the tool in t
   CHECK(t.commands[3].duration_s == doctest::Approx(2.4));
 }
 
-TEST_CASE("a control's waits at M1, M0, M30 and coolant on, and a spindle the path does not wait for") {
+TEST_CASE("a tool change that finds the spindle turning stops and orients it first") {
+  MachineProfile m = round_machine(); // 5 s tool change
+  m.kinematics.tool_change_spindle_stop_s = 1.5;
+  m.kinematics.tool_change_same_tool_s = 2.4;
+  const std::vector<CanonCommand> program{
+      event(CanonKind::ChangeTool, 3),    event(CanonKind::SpindleSpeed, 2000),
+      event(CanonKind::SpindleClockwise), event(CanonKind::ChangeTool, 4),
+      event(CanonKind::ChangeTool, 4),    event(CanonKind::SpindleStop),
+      event(CanonKind::ChangeTool, 5)};
+  const Timeline t = plan(program, m);
+  CHECK(t.commands[0].duration_s == doctest::Approx(5.0)); // the spindle at rest
+  CHECK(t.commands[3].duration_s == doctest::Approx(5.0 + 1.5));
+  CHECK(t.commands[4].duration_s == doctest::Approx(2.4)); // the change stopped the spindle
+  CHECK(t.commands[6].duration_s == doctest::Approx(5.0)); // after M5
+}
+
+TEST_CASE(
+    "a control's waits at M1, M0, M30 and coolant on, and a spindle the path does not wait for") {
   MachineProfile m = round_machine(); // 0.5 s per 1000 rpm
   std::vector<CanonCommand> program{event(CanonKind::SpindleSpeed, 2000),
                                     event(CanonKind::SpindleClockwise),

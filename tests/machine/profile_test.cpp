@@ -276,7 +276,8 @@ TEST_CASE("a control's timing: run-up curve, tool-change sequence, peck distance
 
   const std::string timed =
       with_line("spindle_ramp", "spindle_run_up_rpm_s = [[3000, 0], [7500, 3.0], [12000, 7]]\n"
-                                "tool_change_first_extra_s = 2\ntool_change_same_tool_s = 2.4");
+                                "tool_change_first_extra_s = 2\ntool_change_same_tool_s = 2.4\n"
+                                "tool_change_spindle_stop_s = 1.2");
   const MachineProfile m = parse_profile(timed + "[setup]\npeck_clearance_in = 0.05\n"
                                                  "chip_break_retract_mm = 0.5\n",
                                          "t.toml");
@@ -285,6 +286,8 @@ TEST_CASE("a control's timing: run-up curve, tool-change sequence, peck distance
   CHECK(m.kinematics.spindle_s_per_1000rpm == 0); // the curve replaces the ramp
   CHECK(m.kinematics.tool_change_first_extra_s == 2);
   CHECK(m.kinematics.tool_change_same_tool_s == 2.4);
+  CHECK(m.kinematics.tool_change_spindle_stop_s == 1.2);
+  CHECK(plain.kinematics.tool_change_spindle_stop_s == 0);
   CHECK(*m.setup.peck_clearance_mm == doctest::Approx(1.27));
   CHECK(*m.setup.chip_break_retract_mm == doctest::Approx(0.5));
   // A curve that falls, or a run-down without a run-up, is refused at its key.

@@ -62,6 +62,10 @@ struct Kinematics {
   // tool_change_s.
   double tool_change_first_extra_s = 0;
   std::optional<double> tool_change_same_tool_s;
+  // Added to an M6 that finds the spindle turning: the control stops it and orients it for the
+  // arm before the change (an M6 after M5 only orients, which tool_change_s holds), and leaves
+  // it at rest (the next M3 runs it up from rest). 0: none.
+  double tool_change_spindle_stop_s = 0;
   // The in-position check of a control that settles after every stop (Hurco, Haas and Fanuc
   // without their look-ahead modes): added to every move that ends at rest. 0 (LinuxCNC's
   // planner, which does not wait) by default.

@@ -18,13 +18,16 @@ constexpr double kCollisionMinMm3 = 1e-6;
 // a cut on one system and air on the other.
 constexpr double kRoundingMm3 = 1e-9;
 
-// A sample's position to the nearest nanometre. The positions of arcs come from sin and cos,
-// whose last bits differ between C libraries; a grid column whose centre lies on the tool's
-// edge would be cut on one system and not on the other. Taken to a nanometre first, the same
-// program cuts the same columns everywhere.
+// A length (mm) to the nearest nanometre. Sample positions of arcs come from sin and cos, and a
+// coarsened grid's spacing from pow, whose last bits differ between C libraries; a grid column
+// whose centre lies on the tool's edge would be cut on one system and not on the other. Taken to
+// a nanometre first, the same program cuts the same columns everywhere.
+double to_nanometre(double mm) {
+  return std::nearbyint(mm * 1e6) * 1e-6;
+}
+
 Point3 to_nanometre(double x, double y, double z) {
-  auto nm = [](double v) { return std::nearbyint(v * 1e6) * 1e-6; };
-  return Point3(nm(x), nm(y), nm(z));
+  return Point3(to_nanometre(x), to_nanometre(y), to_nanometre(z));
 }
 
 std::string format_box(const Box3& b) {
@@ -257,9 +260,7 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
           std::max(cells(grid_) / cell_limit,
                    double(estimated_removal_memory(options.engine, grid_, spec.kind, crossings_)) /
                        double(budget));
-      // To the nanometre: std::pow differs in the last bit between C libraries, and so would
-      // the whole grid.
-      spacing = std::nearbyint(spacing * std::max(1.01, std::pow(over, power)) * 1e6) * 1e-6;
+      spacing = to_nanometre(spacing * std::max(1.01, std::pow(over, power)));
       grid_ = grid_at(spacing);
     }
     diag(Severity::Note, 0,

@@ -85,12 +85,29 @@ SteadyCut run_cut(const Table2Row& row, const MachineProfile& machine) {
 
 } // namespace
 
-TEST_CASE("Anziani Table 2 with the removal engine's MRR: power within 0.02 kW, pointwise SEC") {
+TEST_CASE("Zhou profile: Table 1's constants, to the digits its printed values round from") {
+  const MachineProfile machine =
+      load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/zhou2017-anziani2025.toml");
+  const ZhouConstants& zhou = machine.power.zhou;
+  // Table 1 prints 0.78, 0.00017, 8.06e-7 and 1.13: the profile's values round to them (half up,
+  // with 1e-9 of the half digit for the binary representation of a value on the bound).
+  const auto rounds_to = [](double value, double printed, double half_digit) {
+    return std::abs(value - printed) <= half_digit * (1 + 1e-9);
+  };
+  CHECK(rounds_to(zhou.c1_kw, 0.78, 0.005));
+  CHECK(rounds_to(zhou.c2_kw_per_rpm, 0.00017, 0.000005));
+  CHECK(rounds_to(zhou.c3, 8.06e-7, 0.005e-7));
+  CHECK(rounds_to(zhou.c4, 1.13, 0.005));
+}
+
+TEST_CASE("Anziani Table 2 with the removal engine's MRR: the thesis's model powers, pointwise "
+          "SEC") {
   const MachineProfile machine =
       load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/zhou2017-anziani2025.toml");
   REQUIRE(machine.power.model == PowerModel::Zhou);
   const ZhouConstants& zhou = machine.power.zhou;
   double sum_mrr_err = 0, sum_power_err_thesis = 0, sum_power_err_expected = 0;
+  double sum_power_rel_err_expected = 0;
   double sum_sec_err_formula = 0, sum_sec_err_expected = 0, sum_sec_err_model = 0;
   std::string table = "test  MRR mm^3/s (removal / expected)  P kW (pred / thesis model / "
                       "expected)  SEC J/mm^3 (pred / Zhou P/MRR / Zhou SEC model / expected)\n";
@@ -107,13 +124,17 @@ TEST_CASE("Anziani Table 2 with the removal engine's MRR: power within 0.02 kW, 
     // The dexel grid is exact in Z and 0.1 mm in X and Y: the steady MRR is depth * width *
     // feed up to a column at the block's ends.
     CHECK(std::abs(mrr_err) < 0.005);
-    CHECK(std::abs(p.power_kw - row.thesis_model_power_kw) <= 0.02);
+    // The thesis prints its model powers to 0.01 kW, at its own simulated MRR (within 0.05 mm^3/s
+    // of the table's, 0.0002 kW at most): the profile's constants give each of them.
+    CHECK(std::abs(p.power_kw - row.thesis_model_power_kw) <= 0.0052);
     CHECK(std::abs(p.power_kw - formula_power_kw) <= 0.002);
     CHECK(std::abs(p.sec - formula_sec) / formula_sec < 0.005);
     CHECK(std::abs(p.sec - sec_model) / sec_model < 0.05);
     sum_mrr_err += std::abs(mrr_err);
     sum_power_err_thesis += std::abs(p.power_kw - row.thesis_model_power_kw);
     sum_power_err_expected += std::abs(p.power_kw - row.expected_power_kw);
+    sum_power_rel_err_expected +=
+        std::abs(p.power_kw - row.expected_power_kw) / row.expected_power_kw;
     sum_sec_err_formula += std::abs(p.sec - formula_sec) / formula_sec;
     sum_sec_err_expected += std::abs(p.sec - row.expected_sec) / row.expected_sec;
     sum_sec_err_model += std::abs(p.sec - sec_model) / sec_model;
@@ -136,5 +157,6 @@ TEST_CASE("Anziani Table 2 with the removal engine's MRR: power within 0.02 kW, 
                 100 * sum_sec_err_expected / n);
   MESSAGE(table);
   MESSAGE(summary);
-  CHECK(sum_power_err_thesis / n < 0.02);
+  // Against Zhou's measured powers the thesis's model erred by 3.17% on average.
+  CHECK(sum_power_rel_err_expected / n <= 0.032);
 }

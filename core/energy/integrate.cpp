@@ -207,11 +207,15 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   result.cost = result.electricity_cost + result.machine_cost;
   result.currency = options_.currency.value_or(constants_.currency);
   if (over_max_line_ >= 0) {
-    char text[240];
+    char text[400];
     std::snprintf(text, sizeof text,
                   "S%g is above the spindle's maximum of %g rpm (spindle_max_rpm): the control "
-                  "runs it at %g rpm, and so is it counted",
-                  over_max_rpm_, constants_.spindle_max_rpm, constants_.spindle_max_rpm);
+                  "runs it at %g rpm, and so is it counted%s",
+                  over_max_rpm_, constants_.spindle_max_rpm, constants_.spindle_max_rpm,
+                  constants_.placeholder_spindle
+                      ? "; this profile's maximum is a placeholder (its source does not describe "
+                        "the spindle): use a profile of the machine the program was made for"
+                      : "");
     result.diagnostics.push_back({Severity::Warning, "", over_max_line_ + 1, 0, text});
   }
   const PavanaskarConstants& pav = constants_.pavanaskar;

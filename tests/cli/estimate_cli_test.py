@@ -199,6 +199,25 @@ for feed, warned in ((3000, True), (600, False)):
     said = any("placeholders" in m and "3000 mm/min" in m for m in messages)
     check(said == warned, f"F{feed} on the Zhou profile: placeholder rates said: {said} ({messages})")
 
+# The Zhou/Anziani machine's spindle is not described by its sources: its rating and maximum
+# speed are placeholders, and the warnings they raise say so rather than predict a stall. A
+# 20 mm end mill slotting 20 mm deep at F3000 asks some 100 kW of the placeholder 5.5 kW; on the
+# generic profile, whose rating is a typical small VMC's, the same cut is read as a stall.
+heavy = ("G21 G90\n(T1 D=20. - FLAT END MILL)\nT1 M6\nS{rpm} M3\nG0 X-15 Y0 Z5\nG0 Z-20\n"
+         "G1 X100 F3000\nG0 Z5\nM30\n")
+for machine, placeholder in ((ZHOU, True), ("generic-3axis", False)):
+    r = run("estimate", "-", "--machine", machine, "--json", "--stock", "box:0,-20,-30,100,20,0",
+            stdin=heavy.format(rpm=12000))
+    messages = [w["message"] for w in json.loads(r.stdout)["warnings"]]
+    load = [m for m in messages if "more than its rated power" in m]
+    top = [m for m in messages if "above the spindle's maximum of 10000 rpm" in m]
+    check(len(load) == 1 and ("placeholder" in load[0]) == placeholder
+          and ("would stall" in load[0]) != placeholder,
+          f"{machine}: the overload is read as {'a placeholder' if placeholder else 'a stall'} "
+          f"({load})")
+    check(len(top) == 1 and ("placeholder" in top[0]) == placeholder,
+          f"{machine}: S12000 is clamped to 10000 rpm, the placeholder said: {placeholder} ({top})")
+
 # An inch program's summary reads in in^3 and in^3/min (the mm^3 follow), its operations in
 # in^3; the JSON stays in SI. A 0.25 in slot 0.1 in deep along 2 in of a 3 x 1 x 0.5 in block:
 # about 0.25 * 0.1 * 2 = 0.05 in^3 plus the tool's round front.

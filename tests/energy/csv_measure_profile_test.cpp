@@ -143,7 +143,11 @@ TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitti
   const auto at = text.find("[power]\n");
   REQUIRE(at != std::string::npos);
   text.insert(at + 8, "cutting_term = \"material\"\nmaterial = \"mild-steel\"\n"
-                      "cutting_efficiency = 0.7\nspindle_rated_w = 7500\n");
+                      "cutting_efficiency = 0.7\n");
+  // The shop's own rating in place of the profile's placeholder.
+  const auto rating = text.find("spindle_rated_w = 5500");
+  REQUIRE(rating != std::string::npos);
+  text.replace(rating, 22, "spindle_rated_w = 7500");
   text += "\n[power.profile_material]\nsource = \"shop table\"\nname = \"house-alloy\"\n"
           "kc_j_mm3 = 0.9\n";
   original = parse_profile(text, path);
@@ -178,6 +182,7 @@ TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitti
   CHECK(back.power.material == "mild-steel");
   CHECK(back.power.cutting_efficiency == doctest::Approx(0.7));
   CHECK(back.power.spindle_rated_w == doctest::Approx(7500));
+  CHECK(back.power.placeholder_spindle); // a fit of the power says nothing of the spindle
   REQUIRE(back.power.profile_material);
   CHECK(back.power.profile_material->name == "house-alloy");
   CHECK(back.power.zhou.c3 == doctest::Approx(1.25e-6));

@@ -99,6 +99,10 @@ TEST_CASE("Zhou profile: Table 1 constants, to the digits Table 2's model powers
   CHECK(m.power.zhou.c1_kw == doctest::Approx(0.7765));
   CHECK(m.power.zhou.c3 == doctest::Approx(8.0623e-7));
   CHECK(m.power.zhou.d4 == doctest::Approx(779));
+  // Its sources do not describe the spindle: the rating and top speed are marked placeholders.
+  CHECK(m.power.placeholder_spindle);
+  CHECK(m.power.spindle_rated_w == 5500);
+  CHECK(m.power.spindle_max_rpm == 10000);
   CHECK(m.kinematics.axes[0].rapid_mm_s == doctest::Approx(1000.0 / 60));
 }
 
@@ -243,6 +247,10 @@ TEST_CASE("[power]: cutting term, material, efficiency and spindle rating are re
                            "power.cutting_efficiency");
   check_names_file_and_key(refusal(with_line("cutting_term", "cutting_term = \"magic\"")),
                            "power.cutting_term");
+  // A placeholder spindle needs a rating or a top speed to stand in for.
+  std::string no_spindle = with_line("spindle_rated_w", "placeholder_spindle = true");
+  no_spindle.replace(no_spindle.find("spindle_max_rpm ="), 1, "#");
+  check_names_file_and_key(refusal(no_spindle), "power.placeholder_spindle");
   // A curve of rated power against speed.
   const MachineProfile curve = parse_profile(
       with_line("spindle_rated_w", "spindle_power_curve_rpm_w = [[1000, 2000], [6000, 5500]]"),

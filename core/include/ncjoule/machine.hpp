@@ -171,6 +171,9 @@ struct PowerConstants {
   // The spindle's highest speed (0: not given): a program asking for more is warned about and
   // counted at it, as the control clamps the speed.
   double spindle_max_rpm = 0;
+  // The rating and maximum speed stand in for a spindle the profile's source does not describe
+  // (a seed machine fitted from published data): the warnings they raise say so.
+  bool placeholder_spindle = false;
   double co2_kg_per_kwh = 0;
   double price_per_kwh = 0;
   // What an hour of the machine costs the shop besides its electricity (depreciation, floor

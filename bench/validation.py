@@ -196,9 +196,10 @@ def spans(shapes, y):
 
 def bear_program(scale):
     # Mora (2018) Table 2.1, the Haas VF-0 column: 3/32 in tool, 1.778 mm deep, air cuts at
-    # 2.54 mm, 5000 rpm, 381 mm/min, down feed 101.6 mm/min; one-way passes along X at half the
-    # tool's width (the analyzer's default overlap).
+    # 2.54 mm, 5000 rpm, 381 mm/min, down feed 101.6 mm/min; one-way passes along X, 0.0186 in
+    # apart (Mora Sec. 3.1 measured this stepover on Pavanaskar's toolpath, at six places).
     d = 3 / 32
+    stepover = 0.0186
     r = d / 2
     shapes = bear_shapes(scale, r)
     lines = ["G20 G90", "(T1 D=0.09375 - FLAT END MILL)", "T1 M6", "S5000 M3", "G0 Z0.1"]
@@ -208,7 +209,7 @@ def bear_program(scale):
         for lo, hi in spans(shapes, y):
             lines += [f"G0 X{lo:.4f} Y{y:.4f}", "G1 Z-0.07 F4.", f"G1 X{hi:.4f} F15.",
                       "G0 Z0.1"]
-        y += d / 2
+        y += stepover
     lines += ["M5", "M30"]
     return "\n".join(lines) + "\n"
 

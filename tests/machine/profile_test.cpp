@@ -85,8 +85,8 @@ TEST_CASE("Haas VF-0 profile: Pavanaskar's timing and constants in internal unit
   CHECK(m.kinematics.feed_profile == FeedProfile::Trapezoid);
   CHECK(m.power.model == PowerModel::Pavanaskar);
   CHECK(m.power.pavanaskar.tare_w == doctest::Approx(325));
-  CHECK(m.power.pavanaskar.spindle_ka_w == doctest::Approx(24.08));
-  CHECK(m.power.pavanaskar.spindle_kb_w_per_rpm == doctest::Approx(0.22417));
+  CHECK(m.power.pavanaskar.spindle_ka_w == doctest::Approx(141.67));
+  CHECK(m.power.pavanaskar.spindle_kb_w_per_rpm == doctest::Approx(0.21));
   // Table 4.1's X move line: 1.8571 W per % of the assumed rapid rate.
   const double per_percent = m.kinematics.axes[0].rapid_mm_s / 100;
   CHECK(m.power.pavanaskar.move_kb_w_per_mm_s[0] * per_percent ==

@@ -210,12 +210,11 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
     char text[400];
     std::snprintf(text, sizeof text,
                   "S%g is above the spindle's maximum of %g rpm (spindle_max_rpm): the control "
-                  "runs it at %g rpm, and so is it counted%s",
+                  "runs it at %g rpm, and so is it counted%s%s",
                   over_max_rpm_, constants_.spindle_max_rpm, constants_.spindle_max_rpm,
-                  constants_.placeholder_spindle
-                      ? "; this profile's maximum is a placeholder (its source does not describe "
-                        "the spindle): use a profile of the machine the program was made for"
-                      : "");
+                  constants_.placeholder_spindle ? "; this profile's maximum is a placeholder "
+                                                 : "",
+                  constants_.placeholder_spindle ? kPlaceholderSpindleAdvice : "");
     result.diagnostics.push_back({Severity::Warning, "", over_max_line_ + 1, 0, text});
   }
   const PavanaskarConstants& pav = constants_.pavanaskar;

@@ -233,23 +233,22 @@ void ResultFolder::finish(double total_s) {
         std::any_of(removals_.begin(), removals_.end(), [](const RemovalSimulator* r) {
           return r->ready() && r->summary().stock_source == StockSource::Guessed;
         });
+    const bool placeholder = power_constants_.placeholder_spindle;
     const char* reading =
-        power_constants_.placeholder_spindle
-            ? "this profile's rating is a placeholder (its source does not describe the "
-              "spindle), so this says only that the cut is far beyond what the profile was "
-              "fitted on: use a profile of the machine the program was made for"
-        : guessed ? "the stock is guessed as the full box of the cuts; where earlier "
-                    "operations or programs already cleared material (rest machining), "
-                    "the real cut is lighter: give the stock. With the real stock, a "
-                    "cut still over the rating would stall, or the CAM feeds and speeds "
-                    "are wrong"
-                  : "the cut would stall, or the CAM feeds and speeds are wrong";
+        placeholder ? "this profile's rating is a placeholder, so this says only that the cut is "
+                      "far beyond what the profile was fitted on "
+        : guessed   ? "the stock is guessed as the full box of the cuts; where earlier "
+                      "operations or programs already cleared material (rest machining), "
+                      "the real cut is lighter: give the stock. With the real stock, a "
+                      "cut still over the rating would stall, or the CAM feeds and speeds "
+                      "are wrong"
+                    : "the cut would stall, or the CAM feeds and speeds are wrong";
     char text[520];
     std::snprintf(text, sizeof text,
                   "%zu block(s) ask the spindle for more than its rated power, the first at line "
-                  "%d, up to %.0f%% of the rating at line %d: %s",
+                  "%d, up to %.0f%% of the rating at line %d: %s%s",
                   overloaded_, first_overloaded_line_ + 1, 100 * worst_load_, worst_load_line_ + 1,
-                  reading);
+                  reading, placeholder ? kPlaceholderSpindleAdvice : "");
     out_.diagnostics.push_back(
         {Severity::Warning, source_.path, first_overloaded_line_ + 1, 0, text});
   }

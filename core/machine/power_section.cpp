@@ -159,7 +159,8 @@ PowerConstants read_power(TableReader t, std::vector<std::string>& sources) {
   if (p.placeholder_spindle &&
       !(p.spindle_rated_w > 0 || !p.spindle_power_curve.empty() || p.spindle_max_rpm > 0))
     t.fail("placeholder_spindle", "says the spindle's rating is a placeholder, but the profile "
-                                  "gives neither spindle_rated_w nor spindle_max_rpm");
+                                  "gives no spindle_rated_w, spindle power curve or "
+                                  "spindle_max_rpm");
   if (auto zhou = needs_zhou ? std::optional(t.table("zhou")) : t.optional_table("zhou"))
     p.zhou = read_zhou(*zhou, sources);
   t.finish();

@@ -187,6 +187,12 @@ struct PowerConstants {
 // rating; 0 when the profile gives none.
 double rated_spindle_power_w(const PowerConstants& power, double rpm);
 
+// What the load and top-speed warnings add when `placeholder_spindle` is set: why the figure is
+// no prediction, and what to do instead.
+inline constexpr const char* kPlaceholderSpindleAdvice =
+    "(its source does not describe the spindle): use a profile of the machine the program was "
+    "made for";
+
 // The constants with the cutting term taken from `material` (c3 = k_c / (1000 * efficiency),
 // c4 = 0, cutting_source saying so). Models whose cutting term is fitted are returned as they
 // are, and `used` (when given) is set to false.

@@ -99,9 +99,12 @@ std::string power_section_toml(const PowerConstants& k,
   out << "[power]\n" << source_line;
   out << "model = " << quoted(model_name(k.model)) << "  # combined | pavanaskar | zhou\n";
   line(PP::ToolChange);
-  out << "cutting_term = "
-      << quoted(k.cutting_term == CuttingTerm::Material ? "material" : "fitted")
-      << "  # fitted: c3, c4 of [power.zhou]; material: the workpiece's k_c\n";
+  // Pavanaskar's model cuts with its own per-axis lines: a cutting term kept from a combined base
+  // profile would make the written profile one the loader refuses.
+  if (k.model != PowerModel::Pavanaskar)
+    out << "cutting_term = "
+        << quoted(k.cutting_term == CuttingTerm::Material ? "material" : "fitted")
+        << "  # fitted: c3, c4 of [power.zhou]; material: the workpiece's k_c\n";
   out << "co2_kg_per_kwh = " << number(k.co2_kg_per_kwh) << "\n";
   out << "price_per_kwh = " << number(k.price_per_kwh) << "\n";
   if (k.machine_rate_per_hour > 0)

@@ -12,6 +12,7 @@ import tomllib
 NCJOULE = os.environ["NCJOULE"]
 ROOT = os.environ["NCJOULE_SOURCE_DIR"]
 HAAS = os.path.join(ROOT, "samples/machines/haas-vf0-pavanaskar2014.toml")
+GENERIC = os.path.join(ROOT, "samples/machines/generic-3axis.toml")
 SAMPLE = os.path.join(ROOT, "samples/programs/bracket-linuxcnc.ngc")
 failures = []
 
@@ -91,6 +92,20 @@ with tempfile.TemporaryDirectory() as tmp:
         pav2 = tomllib.load(f)["power"]["pavanaskar"]
     check(r.returncode == 0 and abs(pav2["spindle_ka_w"] - KA) < 1e-3 * abs(KA)
           and pav2["tare_w"] == 375, "--tare-w 375 alone: same fit, tare 375 written")
+
+    # --model pavanaskar from a base profile whose cutting term is the material's (the generic
+    # one): Pavanaskar's model cuts with its own per-axis lines, so the written profile carries
+    # no cutting term, and loads.
+    out4 = os.path.join(tmp, "pav.toml")
+    r = run("calibrate", "--machine", GENERIC, "--model", "pavanaskar", "--spindle", spindle,
+            "-o", out4)
+    with open(out4, "rb") as f:
+        power4 = tomllib.load(f)["power"]
+    check(r.returncode == 0 and power4["model"] == "pavanaskar" and "cutting_term" not in power4,
+          f"--model pavanaskar from a material-term base: no cutting_term written ({r.returncode})")
+    r = run("estimate", SAMPLE, "--machine", out4, "--no-removal")
+    check(r.returncode == 0, f"and ncjoule loads it (estimate exits {r.returncode}: "
+          f"{r.stderr[:200]})")
 
     # A cell that is not a number: file, line and column, exit 2, nothing written.
     bad = write(os.path.join(tmp, "bad.csv"), "rpm,power_w\n3000,1100\n4000,13O0\n5000,1520\n")

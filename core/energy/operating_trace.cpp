@@ -30,13 +30,15 @@ OperatingPoint state_point(const ModalState& s) {
   return op;
 }
 
-// Sets axis motion and cutting shares for a step along displacement d at path speed v.
+// Sets axis motion and cutting shares for a step along displacement d at path speed v, of a move
+// whose axes travel `travel` in all. An axis the move travels keeps moving over a step that
+// ends where it began: an arc's step across a quarter turn, where that axis turns back.
 void set_motion(OperatingPoint& op, const std::array<double, 3>& d, double speed_mm_s,
-                double mrr_mm3_s) {
+                double mrr_mm3_s, const std::array<double, 3>& travel) {
   const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
   const double l1 = std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]);
   for (int i = 0; i < 3; ++i) {
-    const bool moving = std::abs(d[i]) > kStillMm;
+    const bool moving = std::abs(d[i]) > kStillMm || travel[i] > kStillMm;
     op.axis_moving[i] = moving ? 1.0 : 0.0;
     op.axis_speed_mm_s[i] = moving && length > 0 ? speed_mm_s * std::abs(d[i]) / length : 0.0;
     op.cut_share[i] = mrr_mm3_s > 0 && l1 > 0 ? std::abs(d[i]) / l1 : 0.0;
@@ -64,15 +66,22 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
                        std::vector<OperatingSegment>& out) {
   const auto& s = tc.samples;
   const auto whole = displacement(cmd.start, cmd.end);
+  const auto travel = axis_travel(cmd);
   // Its two ends only (no removal asked for finer samples): their speeds are the entry and exit
   // speeds, 0 for a move from rest to rest, and a line between them would lose the cruise. The
   // mean speed over the move is exact for every term linear in speed.
   if (s.size() < 3) {
-    // No samples: constant speed over the duration, the removed volume spread evenly.
+    // No samples: constant speed over the duration, the removed volume spread evenly. Each axis
+    // runs at its travel over the duration: an arc's chord would leave out what its axes do in
+    // between (a full circle's is zero).
     const double mrr = removal ? removal->removed_mm3 / tc.duration_s : 0.0;
-    const double length = tc.length_mm > 0 ? tc.length_mm : norm(whole);
     OperatingPoint op = base;
-    set_motion(op, whole, length / tc.duration_s, mrr);
+    if (norm(travel) > kStillMm) {
+      set_motion(op, travel, norm(travel) / tc.duration_s, mrr, travel);
+    } else {
+      const double length = tc.length_mm > 0 ? tc.length_mm : norm(whole);
+      set_motion(op, whole, length / tc.duration_s, mrr, travel);
+    }
     out.push_back({index, tc.start_s, tc.start_s + tc.duration_s, op, op});
     return;
   }
@@ -86,8 +95,8 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
     if (removal && k < removal->step_volume_mm3.size()) volume = removal->step_volume_mm3[k];
     const double mrr = std::max(0.0, volume) / dt;
     OperatingPoint a = base, b = base;
-    set_motion(a, d, s[k].speed_mm_s, mrr);
-    set_motion(b, d, s[k + 1].speed_mm_s, mrr);
+    set_motion(a, d, s[k].speed_mm_s, mrr, travel);
+    set_motion(b, d, s[k + 1].speed_mm_s, mrr, travel);
     if (removal && k < removal->step_depth_mm.size())
       a.radial_width_mm = b.radial_width_mm =
           radial_width(volume, removal->step_depth_mm[k], across);

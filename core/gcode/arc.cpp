@@ -113,6 +113,42 @@ double move_length(const CanonCommand& move) {
                    (move.end.z - move.start.z) * (move.end.z - move.start.z));
 }
 
+std::array<double, 3> axis_travel(const CanonCommand& move) {
+  auto add_step = [](std::array<double, 3>& travel, const Pose& a, const Pose& b) {
+    travel[0] += std::abs(b.x - a.x);
+    travel[1] += std::abs(b.y - a.y);
+    travel[2] += std::abs(b.z - a.z);
+  };
+  std::array<double, 3> travel{};
+  if (move.kind != CanonKind::Arc) {
+    add_step(travel, move.start, move.end);
+    return travel;
+  }
+  // Between two multiples of a quarter turn both in-plane coordinates are monotonic (and the
+  // helix axis always is): the travel is the sum of the steps between the quarter turns crossed.
+  const ArcGeometry g = arc_geometry(move);
+  if (g.sweep == 0) {
+    add_step(travel, move.start, move.end);
+    return travel;
+  }
+  const PlaneCoords s = to_plane(move.start, move.plane);
+  const double a0 = std::atan2(s.second - move.centre_second, s.first - move.centre_first);
+  constexpr double quarter = std::numbers::pi / 2;
+  const double a1 = a0 + g.sweep;
+  // Quarter turns strictly inside (a0, a1), in the sweep's direction.
+  const double step = g.sweep > 0 ? quarter : -quarter;
+  double next =
+      g.sweep > 0 ? std::floor(a0 / quarter + 1) * quarter : std::ceil(a0 / quarter - 1) * quarter;
+  Pose previous = move.start;
+  for (; g.sweep > 0 ? next < a1 : next > a1; next += step) {
+    const Pose p = point_on_move(move, (next - a0) / g.sweep);
+    add_step(travel, previous, p);
+    previous = p;
+  }
+  add_step(travel, previous, move.end);
+  return travel;
+}
+
 bool travels_in_xy(const CanonCommand& move) {
   constexpr double kMinXyMm = 1e-6;
   return move.kind == CanonKind::Arc ||

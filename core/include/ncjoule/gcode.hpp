@@ -11,6 +11,7 @@
 // Every command carries the index of the source line it came from.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -274,6 +275,10 @@ ArcGeometry arc_geometry(const CanonCommand& arc);
 Pose point_on_move(const CanonCommand& move, double u);
 // Length of a move's path in mm (linear axes only).
 double move_length(const CanonCommand& move);
+// How far each linear axis (X, Y, Z) travels over a move in mm, out and back both counted: a
+// line's displacement, an arc's in-plane axes summed over each quarter turn (a full circle of
+// radius r moves X and Y 4r each), its helix axis the rise.
+std::array<double, 3> axis_travel(const CanonCommand& move);
 // Whether a move travels across X and Y: every arc, and a line whose X or Y changes by more than
 // a micrometre. What tells a level cut or a crossing from a plunge or a retract in Z alone.
 bool travels_in_xy(const CanonCommand& move);

@@ -83,7 +83,13 @@ TEST_CASE("Haas VF-0 profile: Pavanaskar's timing and constants in internal unit
   }
   CHECK(m.kinematics.junction_rule == JunctionRule::NextFeed);
   CHECK(m.kinematics.feed_profile == FeedProfile::Trapezoid);
-  CHECK(m.power.model == PowerModel::Pavanaskar);
+  // Pavanaskar's tare, spindle and move lines, and one cutting term from Table 4.1's cut rows.
+  CHECK(m.power.model == PowerModel::Combined);
+  CHECK(m.power.cutting_term == CuttingTerm::Material);
+  CHECK(m.power.material == "6061-vf0");
+  REQUIRE(m.power.cutting_material.has_value());
+  CHECK(m.power.cutting_material->kc_j_mm3 == doctest::Approx(0.6132));
+  CHECK(m.power.cutting_efficiency == doctest::Approx(0.8));
   CHECK(m.power.pavanaskar.tare_w == doctest::Approx(325));
   CHECK(m.power.pavanaskar.spindle_ka_w == doctest::Approx(141.67));
   CHECK(m.power.pavanaskar.spindle_kb_w_per_rpm == doctest::Approx(0.21));

@@ -135,17 +135,44 @@ std::array<double, 3> axis_travel(const CanonCommand& move) {
   const double a0 = std::atan2(s.second - move.centre_second, s.first - move.centre_first);
   constexpr double quarter = std::numbers::pi / 2;
   const double a1 = a0 + g.sweep;
-  // Quarter turns strictly inside (a0, a1), in the sweep's direction.
-  const double step = g.sweep > 0 ? quarter : -quarter;
-  double next =
-      g.sweep > 0 ? std::floor(a0 / quarter + 1) * quarter : std::ceil(a0 / quarter - 1) * quarter;
-  Pose previous = move.start;
-  for (; g.sweep > 0 ? next < a1 : next > a1; next += step) {
-    const Pose p = point_on_move(move, (next - a0) / g.sweep);
-    add_step(travel, previous, p);
-    previous = p;
+  // The first and the last quarter turn strictly inside (a0, a1), in the sweep's direction.
+  const bool ccw = g.sweep > 0;
+  const double first =
+      ccw ? std::floor(a0 / quarter + 1) * quarter : std::ceil(a0 / quarter - 1) * quarter;
+  const double last =
+      ccw ? std::ceil(a1 / quarter - 1) * quarter : std::floor(a1 / quarter + 1) * quarter;
+  const bool crosses = ccw ? first < a1 : first > a1;
+  const double crossings = crosses ? std::round(std::abs(last - first) / quarter) + 1 : 0;
+  auto at = [&](double angle) { return point_on_move(move, (angle - a0) / g.sweep); };
+  constexpr double kExactCrossings = 64;
+  if (crossings <= kExactCrossings) {
+    Pose previous = move.start;
+    for (double k = 0; k < crossings; ++k) {
+      const Pose p = at(first + (ccw ? k : -k) * quarter);
+      add_step(travel, previous, p);
+      previous = p;
+    }
+    add_step(travel, previous, move.end);
+    return travel;
   }
-  add_step(travel, previous, move.end);
+  // A helix of many turns (P up to the interpreter's limit): the partial quarters at the ends
+  // exactly, and each whole quarter between moves both in-plane axes by its radius, which the
+  // spiral blend changes linearly (the mean of the first and last).
+  const Pose p_first = at(first), p_last = at(last);
+  add_step(travel, move.start, p_first);
+  add_step(travel, p_last, move.end);
+  auto radius = [&](const Pose& p) {
+    const PlaneCoords c = to_plane(p, move.plane);
+    return std::hypot(c.first - move.centre_first, c.second - move.centre_second);
+  };
+  const double in_plane = (crossings - 1) * (radius(p_first) + radius(p_last)) / 2;
+  const double rise =
+      std::abs(to_plane(p_last, move.plane).normal - to_plane(p_first, move.plane).normal);
+  Pose middle;
+  from_plane(middle, move.plane, {in_plane, in_plane, rise});
+  travel[0] += middle.x;
+  travel[1] += middle.y;
+  travel[2] += middle.z;
   return travel;
 }
 

@@ -76,3 +76,45 @@ TEST_CASE("a helical half turn: the in-plane axes by their quarter turns, Z by t
     CHECK(b.components_j[component] == doctest::Approx(a.components_j[component]).epsilon(0.005));
   }
 }
+
+namespace {
+
+CanonCommand arc(Pose start, Pose end, double cx, double cy, int rotation) {
+  CanonCommand c;
+  c.kind = CanonKind::Arc;
+  c.start = start;
+  c.end = end;
+  c.centre_first = cx;
+  c.centre_second = cy;
+  c.rotation = rotation;
+  c.plane = Plane::XY;
+  return c;
+}
+
+void check_travel(const CanonCommand& move, std::array<double, 3> expected) {
+  const std::array<double, 3> t = axis_travel(move);
+  for (int i = 0; i < 3; ++i) {
+    CAPTURE(i);
+    CHECK(t[i] == doctest::Approx(expected[i]).epsilon(1e-9));
+  }
+}
+
+} // namespace
+
+TEST_CASE("axis_travel: quarter turns, full turns, turns of a helix, both directions") {
+  // A quarter from (10, 0) to (0, 10) about the origin, counter-clockwise: 10 mm each.
+  check_travel(arc({10, 0, 0}, {0, 10, 0}, 0, 0, 1), {10, 10, 0});
+  // The same ends clockwise: three quarters through (0, -10) and (-10, 0), 30 mm each.
+  check_travel(arc({10, 0, 0}, {0, 10, 0}, 0, 0, -1), {30, 30, 0});
+  // A full circle of radius 20, and two more turns (P3).
+  check_travel(arc({0, 0, 0}, {0, 0, 0}, 20, 0, -1), {80, 80, 0});
+  check_travel(arc({0, 0, 0}, {0, 0, 0}, 20, 0, -3), {240, 240, 0});
+  // 100 turns of a helix, radius 10, 10 mm down: past the exact quarter-by-quarter count.
+  check_travel(arc({10, 0, 0}, {10, 0, -10}, 0, 0, 100), {4000, 4000, 10});
+  // A line: its displacement.
+  CanonCommand line;
+  line.kind = CanonKind::Feed;
+  line.start = {1, 2, 3};
+  line.end = {-2, 6, 3};
+  check_travel(line, {3, 4, 0});
+}

@@ -72,7 +72,7 @@ Material read_material(TableReader t, std::vector<std::string>& sources) {
   read_source(t, "power.profile_material", sources);
   m.name = t.string("name");
   if (m.name.empty()) t.fail("name", "must not be empty");
-  m.source = "machine profile";
+  m.source = sources.back(); // "power.profile_material: <its source>", where its k_c is from
   m.kc11_n_mm2 = t.optional_number("kc11_n_mm2", Range::Positive).value_or(0);
   m.mc = t.optional_number("mc", Range::NonNegative).value_or(0);
   const auto kc = t.optional_number("kc_j_mm3", Range::Positive);

@@ -11,8 +11,9 @@ Usage: bench/validation.py NCJOULE BUILD_DIR [--markdown]
 - materials: the cutting energy of a 6061-like slot in every material of the table;
 - a router job at 18,000-24,000 rpm on the router profiles and on the generic profile;
 - calibrate on one part of a machine's data, predict the rest: `ncjoule calibrate` on
-  Pavanaskar's Sec. 3.3 spindle trial predicts Table 4.1's spindle states; on eight of Anziani's
-  Table 2 cuts, it predicts the ninth (each in turn).
+  Pavanaskar's Sec. 3.3 spindle trial predicts Table 4.1's spindle states; the VF-0's cutting
+  term fitted on Table 4.1's X cuts predicts its Y cuts, and the other way round; on eight of
+  Anziani's Table 2 cuts, it predicts the ninth (each in turn).
 """
 import json
 import math
@@ -332,14 +333,15 @@ def calibrate_then_predict(ncjoule):
                for a, f, _ in TABLE_4_1_CUTS}
         with open(VF0) as f:
             profile_text = f.read()
+        efficiency = tomllib.loads(profile_text)["power"]["cutting_efficiency"]
         for fitted_on, predicted in (("X", "Y"), ("Y", "X")):
             rows_fit = [(f, m) for a, f, m in TABLE_4_1_CUTS if a == fitted_on]
             drawn = (sum((m - air[(fitted_on, f)]) * cut_mrr_mm3_s(f) for f, m in rows_fit) /
                      sum(cut_mrr_mm3_s(f) ** 2 for f, _ in rows_fit))
             fitted = os.path.join(folder, f"cut-{fitted_on}.toml")
             with open(fitted, "w") as f:
-                # The profile's efficiency is 0.8: k_c at the edge is 0.8 of what is drawn.
-                f.write(re.sub(r"(?m)^kc_j_mm3 = .*$", f"kc_j_mm3 = {0.8 * drawn:.6f}",
+                # k_c is at the edge: what is drawn times the drive's efficiency.
+                f.write(re.sub(r"(?m)^kc_j_mm3 = .*$", f"kc_j_mm3 = {efficiency * drawn:.6f}",
                                profile_text))
             for a, ipm, measured in TABLE_4_1_CUTS:
                 if a == predicted:

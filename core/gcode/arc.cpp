@@ -124,13 +124,12 @@ std::array<double, 3> axis_travel(const CanonCommand& move) {
     add_step(travel, move.start, move.end);
     return travel;
   }
-  // Between two multiples of a quarter turn both in-plane coordinates are monotonic (and the
-  // helix axis always is): the travel is the sum of the steps between the quarter turns crossed.
+  // Between two multiples of a quarter turn both in-plane coordinates are monotonic, and over a
+  // whole quarter each moves by the radius (the helix axis is monotonic throughout): the partial
+  // quarters at the ends are measured, the whole ones between counted, whatever P turns they
+  // make. The spiral blend of a radius that differs from start to end (point_on_move) is
+  // linear, so the whole quarters' mean radius is that of the first and the last crossing.
   const ArcGeometry g = arc_geometry(move);
-  if (g.sweep == 0) {
-    add_step(travel, move.start, move.end);
-    return travel;
-  }
   const PlaneCoords s = to_plane(move.start, move.plane);
   const double a0 = std::atan2(s.second - move.centre_second, s.first - move.centre_first);
   constexpr double quarter = std::numbers::pi / 2;
@@ -141,38 +140,27 @@ std::array<double, 3> axis_travel(const CanonCommand& move) {
       ccw ? std::floor(a0 / quarter + 1) * quarter : std::ceil(a0 / quarter - 1) * quarter;
   const double last =
       ccw ? std::ceil(a1 / quarter - 1) * quarter : std::floor(a1 / quarter + 1) * quarter;
-  const bool crosses = ccw ? first < a1 : first > a1;
-  const double crossings = crosses ? std::round(std::abs(last - first) / quarter) + 1 : 0;
-  auto at = [&](double angle) { return point_on_move(move, (angle - a0) / g.sweep); };
-  constexpr double kExactCrossings = 64;
-  if (crossings <= kExactCrossings) {
-    Pose previous = move.start;
-    for (double k = 0; k < crossings; ++k) {
-      const Pose p = at(first + (ccw ? k : -k) * quarter);
-      add_step(travel, previous, p);
-      previous = p;
-    }
-    add_step(travel, previous, move.end);
+  if (g.sweep == 0 || (ccw ? first >= a1 : first <= a1)) {
+    add_step(travel, move.start, move.end);
     return travel;
   }
-  // A helix of many turns (P up to the interpreter's limit): the partial quarters at the ends
-  // exactly, and each whole quarter between moves both in-plane axes by its radius, which the
-  // spiral blend changes linearly (the mean of the first and last).
-  const Pose p_first = at(first), p_last = at(last);
+  const double whole_quarters = std::round(std::abs(last - first) / quarter);
+  const Pose p_first = point_on_move(move, (first - a0) / g.sweep);
+  const Pose p_last = point_on_move(move, (last - a0) / g.sweep);
   add_step(travel, move.start, p_first);
   add_step(travel, p_last, move.end);
   auto radius = [&](const Pose& p) {
     const PlaneCoords c = to_plane(p, move.plane);
     return std::hypot(c.first - move.centre_first, c.second - move.centre_second);
   };
-  const double in_plane = (crossings - 1) * (radius(p_first) + radius(p_last)) / 2;
+  const double in_plane = whole_quarters * (radius(p_first) + radius(p_last)) / 2;
   const double rise =
       std::abs(to_plane(p_last, move.plane).normal - to_plane(p_first, move.plane).normal);
-  Pose middle;
-  from_plane(middle, move.plane, {in_plane, in_plane, rise});
-  travel[0] += middle.x;
-  travel[1] += middle.y;
-  travel[2] += middle.z;
+  Pose between;
+  from_plane(between, move.plane, {in_plane, in_plane, rise});
+  travel[0] += between.x;
+  travel[1] += between.y;
+  travel[2] += between.z;
   return travel;
 }
 

@@ -6,6 +6,7 @@
 #include <toml++/toml.h>
 
 #include "ncjoule/calibrate.hpp"
+#include "ncjoule/profile.hpp"
 
 namespace ncjoule {
 namespace {
@@ -167,6 +168,17 @@ std::optional<std::string> profile_with_power(std::string_view base_toml,
   // toml++ writes the top-level keys before any table, so the [power] tables can follow.
   out << toml::toml_formatter(root) << "\n\n"
       << power_section_toml(constants, notes, power_source, kept);
+  // Made from a base profile, what is handed back must load: a profile ncjoule would refuse is
+  // worse than none. Without a base it is the [power] tables alone, for a profile to take in.
+  if (base_toml.empty()) return out.str();
+  try {
+    (void)parse_profile(out.str(), name.empty() ? base_path : name + ".toml");
+  } catch (const ProfileError& e) {
+    Diagnostic d = e.diagnostic();
+    d.message = "the fitted profile would not load: " + d.message;
+    diagnostics.push_back(d);
+    return std::nullopt;
+  }
   return out.str();
 }
 

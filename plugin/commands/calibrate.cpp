@@ -289,15 +289,6 @@ int run_calibrate(const CalibrateCliOptions& o) {
     print_diagnostics(problems);
     return kInputError;
   }
-  // What is written must load: a profile ncjoule refuses is worse than none.
-  try {
-    (void)parse_profile(*text, o.output);
-  } catch (const ProfileError& e) {
-    Diagnostic d = e.diagnostic();
-    d.message = "the fitted profile would not load, so it is not written: " + d.message;
-    print_diagnostics({d});
-    return kInputError;
-  }
   if (const int status = write_profile(o.output, *text); status != kOk) return status;
   std::printf("wrote %s (model %s)\n", o.output.c_str(),
               std::string(model_name(constants.model)).c_str());

@@ -107,6 +107,17 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0, f"and ncjoule loads it (estimate exits {r.returncode}: "
           f"{r.stderr[:200]})")
 
+    # Without --machine: the [power] tables alone, to take into a profile (it is no profile by
+    # itself, so it is not loaded before it is written).
+    out5 = os.path.join(tmp, "power-only.toml")
+    r = run("calibrate", "--spindle", spindle, "--baseline-w", "375", "-o", out5)
+    with open(out5, "rb") as f:
+        doc5 = tomllib.load(f)
+    check(r.returncode == 0 and "kinematics" not in doc5
+          and abs(doc5["power"]["pavanaskar"]["spindle_ka_w"] - KA) < 1e-3 * abs(KA),
+          f"no --machine: the [power] tables alone, with the fit ({r.returncode}: "
+          f"{r.stderr[:200]})")
+
     # A cell that is not a number: file, line and column, exit 2, nothing written.
     bad = write(os.path.join(tmp, "bad.csv"), "rpm,power_w\n3000,1100\n4000,13O0\n5000,1520\n")
     out3 = os.path.join(tmp, "never.toml")

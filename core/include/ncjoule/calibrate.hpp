@@ -174,7 +174,8 @@ std::string power_section_toml(const PowerConstants& constants,
                                const std::string& source = "");
 // A whole profile: the base profile's other tables (TOML text read from `base_path`), `name`
 // when not empty, and the [power] section of `constants`. nullopt, with an error at the line and
-// column in `diagnostics`, when the base does not parse.
+// column in `diagnostics`, when the base does not parse or the profile made from it would not
+// load. Without a base (empty text), the [power] tables alone.
 std::optional<std::string> profile_with_power(std::string_view base_toml,
                                               const std::string& base_path, const std::string& name,
                                               const PowerConstants& constants,

@@ -23,6 +23,11 @@ constexpr double kAssumedRapidMmS = 710 * kMmPerInch / 60;
 // (50% of a 0.375 in tool) and 1.27 mm deep.
 constexpr double kAssumedCutAreaMm2 = 4.7625 * 1.27;
 
+// The removal rate of a Table 4.1 cut at `ipm` through the assumed section (mm^3/s).
+double cut_mrr_mm3_s(double ipm) {
+  return kAssumedCutAreaMm2 * ipm * kMmPerInch / 60;
+}
+
 PowerConstants haas_vf0_constants() {
   PowerConstants k;
   k.model = PowerModel::Pavanaskar;
@@ -35,7 +40,7 @@ PowerConstants haas_vf0_constants() {
   p.move_ka_w = {249.57, 348.57, 0};
   p.move_kb_w_per_mm_s = {1.8571 * 100 / kAssumedRapidMmS, 0.6571 * 100 / kAssumedRapidMmS, 0};
   // Cut lines in W against feed in ipm: X 264.5 + 1.65 F, Y 361.5 + 1.35 F.
-  const double mrr_per_ipm = kAssumedCutAreaMm2 * kMmPerInch / 60;
+  const double mrr_per_ipm = cut_mrr_mm3_s(1);
   p.cut_ka_w = {264.5, 361.5, 0};
   p.cut_kb_w_per_mm3_s = {1.65 / mrr_per_ipm, 1.35 / mrr_per_ipm, 0};
   return k;
@@ -154,10 +159,6 @@ struct MeterCut {
 };
 constexpr MeterCut kMeterCuts[] = {
     {Axis::X, 30, 300}, {Axis::X, 50, 370}, {Axis::Y, 30, 430}, {Axis::Y, 50, 440}};
-
-double cut_mrr_mm3_s(double ipm) {
-  return kAssumedCutAreaMm2 * ipm * kMmPerInch / 60;
-}
 
 // The profile's move line of the cut's axis at the cut's feed (W).
 double move_line_w(const PowerConstants& k, const MeterCut& c) {

@@ -395,6 +395,9 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
           options.stock ? std::nullopt
                         : estimate_detail::stock_from_cam_comments(source, e.dialect);
       for (std::size_t k = 0; k < scan.extents.size(); ++k) {
+        // A later setup cuts what the first left: its guessed stock is no larger.
+        if (k > 0 && removals.front()->ready())
+          removal_options.first_setup_stock = removals.front()->summary().stock_box;
         removals.push_back(std::make_unique<RemovalSimulator>(
             setup_stock(options, k, e.inch, from_comments),
             removal_options.mirror_z ? mirrored[k] : scan.extents[k], used, removal_options));

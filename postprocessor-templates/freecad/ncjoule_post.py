@@ -191,7 +191,12 @@ class _Settings:
         self.post = known.post or os.environ.get("NCJOULE_POST") or "linuxcnc"
         self.machine = known.machine or os.environ.get("NCJOULE_MACHINE") or ""
         self.program = known.ncjoule or os.environ.get("NCJOULE") or "ncjoule"
-        self.stock = known.stock or os.environ.get("NCJOULE_STOCK") or _job_stock(objectslist)
+        self.stock = known.stock or os.environ.get("NCJOULE_STOCK") or ""
+        # The job's own stock is named as the hook's (ncjoule --stock-from, docs/stock.md).
+        self.stock_from = ""
+        if not self.stock:
+            self.stock = _job_stock(objectslist) or ""
+            self.stock_from = "freecad" if self.stock else ""
         self.tools = _job_tools(objectslist)
         self.extra = _extra_arguments(known.ncjoule_args or os.environ.get("NCJOULE_ARGS", ""))
         self.enabled = not known.no_ncjoule and os.environ.get("NCJOULE_DISABLE", "") not in (
@@ -213,6 +218,8 @@ class _Settings:
         cmd = [self.program, "annotate"] + (["--machine=" + self.machine] if self.machine else [])
         if self.stock:
             cmd.append("--stock=" + self.stock)
+        if self.stock_from:
+            cmd.append("--stock-from=" + self.stock_from)
         if in_place:
             cmd.append("--in-place")
         return cmd + self.tools + self.extra + ["--", source]

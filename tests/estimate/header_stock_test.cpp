@@ -63,7 +63,7 @@ TEST_CASE("Vectric's Material Size block: the size on the next line, placed by i
   CHECK(s->box.xmax == 300);
 }
 
-TEST_CASE("Vectric's one-line Material Size and its variants; not a size, no stock") {
+TEST_CASE("Vectric's one-line Material Size and its variants, and what is not a size") {
   auto one = [](const std::string& header) {
     return stock_from_cam_comments(make_source("v.nc", header + "G0 Z5\n"), linuxcnc());
   };

@@ -233,7 +233,7 @@ TEST_CASE("XML tags: names, attributes with entities, and where malformed XML st
   }
 }
 
-TEST_CASE("BREP vertex bounds: the shape's one location moves them; a turned one is refused") {
+TEST_CASE("BREP vertex bounds: the shape's one location moves them, a turned one is refused") {
   using projects_detail::brep_vertex_bounds;
   const std::string head = "\nCASCADE Topology V1, (c) Matra-Datavision\nLocations 1\n1\n";
   const std::string rows = "1 0 0 5\n0 1 0 -2\n0 0 1 -10\n";

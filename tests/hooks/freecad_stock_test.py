@@ -63,6 +63,7 @@ def job_document(name, stock):
         doc.removeObject(job.Stock.Name)
         job.Stock = PathStock.CreateCylinder(job)
         job.Stock.Radius, job.Stock.Height = 40, 12
+        job.Stock.Placement.Base = FreeCAD.Vector(30, 20, -12)  # X -10..70, Y -20..60, Z -12..0
     tc = job.Tools.Group[0]
     body_path = [Path.Command("(Facing)"), G("G0", z=5), G("G0", x=-8, y=2), G("G1", z=-0.5, f=5)]
     y, right = 2.0, True
@@ -90,16 +91,21 @@ def header_stock(text):
     return next((l for l in text.splitlines() if "NCJ STOCK" in l), "")
 
 
-def estimate(program, config=None):
-    r = subprocess.run([NCJOULE, "estimate", "--json", "--machine=" + MACHINE, program],
+def estimate(program, *more, config=None):
+    r = subprocess.run([NCJOULE, "estimate", "--json", "--machine=" + MACHINE] + list(more) +
+                       [program],
                        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                        env=dict(os.environ, NCJOULE_CONFIG=config or os.path.join(ROOT, "no-such.toml")))
     check(r.returncode == 0, "ncjoule estimate %s failed: %s" % (program, r.stderr.decode()))
     return (json.loads(r.stdout) if r.stdout else {}), r.stderr.decode()
 
 
+def close_to_within(values, expected, tolerance):
+    return len(values) == 6 and all(abs(a - b) <= tolerance for a, b in zip(values, expected))
+
+
 def close_to(values, expected):
-    return len(values) == 6 and all(abs(a - b) < 1e-6 for a, b in zip(values, expected))
+    return close_to_within(values, expected, 1e-6)
 
 
 def run():
@@ -128,6 +134,33 @@ def run():
             check("part_%s.FCStd" % kind in setup.get("stock_origin", ""),
                   "%s: stock_origin %r" % (kind, setup.get("stock_origin")))
             FreeCAD.closeDocument(doc.Name)
+        # A cylinder stock through the wrapper: its shape as an STL in the program's units (its
+        # bounding box would hold material the cylinder has not), in a mm and an inch program.
+        doc, objects = job_document("round", "cylinder")
+        for units in ("mm", "inch"):
+            out = os.path.join(folder, "round-%s.ngc" % units)
+            ncjoule_post.export(objects, out, " ".join(
+                ["--post=linuxcnc", "--machine=" + MACHINE, "--ncjoule=" + NCJOULE, "--no-header",
+                 "--no-show-editor"] + (["--inches"] if units == "inch" else [])))
+            with open(out) as f:
+                text = f.read()
+            check(("G20" in text) == (units == "inch"), "%s: the post wrote %s" % (units, units))
+            stock = header_stock(text)
+            check("FROM=hook-freecad" in stock, "cylinder %s: the hook's stock: %s" % (units, stock))
+            box = re.search(r"BOX_MM=([-0-9.,]+)", stock)
+            values = [float(v) for v in box.group(1).split(",")] if box else []
+            check(close_to_within(values, (-10, -20, -12, 70, 60, 0), 0.05),
+                  "cylinder %s: the STL's box is the cylinder's: %s" % (units, stock))
+            # The cylinder holds less of the facing than its bounding box: the facing's corners
+            # lie outside it.
+            removed = re.search(r"VOL_MM3=([0-9.e+]+)", text)
+            in_box, _ = estimate(out, "--stock=box:-10mm,-20mm,-12mm,70mm,60mm,0mm",
+                                 *ncjoule_post._job_tools(objects))
+            print("cylinder %s: removed %s, in its box %r" % (units, removed and removed.group(1), in_box.get("removed_mm3")))
+            check(removed is not None and 0 < float(removed.group(1)) < 0.97 * in_box.get(
+                "removed_mm3", 0), "cylinder %s: removes less than its box (%s, %r)" % (
+                units, removed and removed.group(1), in_box.get("removed_mm3")))
+        FreeCAD.closeDocument(doc.Name)
         # A cylinder stock beside the program: named, and the next source (here the user
         # config's stock) used.
         doc, objects = job_document("part_cylinder", "cylinder")
@@ -138,7 +171,7 @@ def run():
         config = os.path.join(folder, "config.toml")
         with open(config, "w") as f:
             f.write('stock = "box:-40,-40,-12,40,40,0"\n')
-        result, err = estimate(program, config)
+        result, err = estimate(program, config=config)
         check(result.get("stock_from") == "user-config",
               "cylinder: stock_from %r, not the next source's" % result.get("stock_from"))
         check(re.search(r"part_cylinder\.FCStd/Document\.xml:\d+: warning: .*cylinder stock", err)

@@ -4,12 +4,14 @@ the program (its workpiece and tools read from it) against the same program with
 given by --stock and those tools by --tool. The two must agree: the project reader must give
 exactly what a user typing the project's stock and tools would.
 
-    bench/camotics_projects.py NCJOULE REPO [--machine PROFILE]
+    bench/camotics_projects.py NCJOULE REPO [--machine PROFILE] [--guess]
 
 REPO: a clone of CauldronDevelopmentLLC/CAMotics (a bare one too). Prints a table: per program,
 the stock the project gives, removed volume, energy and peak power both ways, and whether they
 agree (to the printed digits); then the projects whose workpiece is automatic (not a stock its
-author set: ncjoule does not take it).
+author set: ncjoule does not take it). With --guess, a second table: the same programs with the
+project's tools but no stock (ncjoule's guess from the cuts), against the project's stock: a
+held-out set for the guess, since each author set the stock by hand.
 """
 import json
 import math
@@ -67,6 +69,9 @@ def run(ncjoule, args):
 def main():
     args = [a for a in sys.argv[1:]]
     machine = []
+    guess = "--guess" in args
+    if guess:
+        args.remove("--guess")
     if "--machine" in args:
         i = args.index("--machine")
         machine = ["--machine", args[i + 1]]
@@ -106,6 +111,30 @@ def main():
                 print("| %s | %s | %s | %s | %s | %s | %s |" % (
                     name, ",".join("%g" % v for v in stock["min"] + stock["max"]),
                     beside.get("stock_from"), rows[0], rows[1], rows[2], "yes" if same else "NO"))
+        if guess:
+            print()
+            print("| program | removed mm^3 guessed / project | energy J guessed / project | "
+                  "peak W guessed / project |")
+            print("|---|---|---|---|")
+            for folder, project_path, is_automatic, programs in laid:
+                if is_automatic:
+                    continue
+                project = json.load(open(project_path))
+                for program in programs:
+                    alone = os.path.join(out, "alone")
+                    os.makedirs(alone, exist_ok=True)
+                    lone = os.path.join(alone, os.path.basename(program))
+                    with open(program, "rb") as src, open(lone, "wb") as dst:
+                        dst.write(src.read())
+                    guessed, err = run(ncjoule, machine + tool_options(project) + [lone])
+                    given, _ = run(ncjoule, machine + [program])
+                    os.remove(lone)
+                    if guessed is None or given is None:
+                        print("| %s | failed: %s | | |" % (os.path.basename(program), err))
+                        continue
+                    print("| %s | %s | %s | %s |" % ((os.path.basename(program),) + tuple(
+                        "%.6g / %.6g" % (figure(guessed, k), figure(given, k))
+                        for k in ("removed_mm3", "energy_j", "peak_power_w"))))
         print()
         print("automatic workpiece (not read): " + (", ".join(automatic) or "none"))
         print("all agree: " + ("yes" if agree_all else "NO"))

@@ -140,6 +140,8 @@ std::vector<Group> stocks(const Estimate& estimate) {
       g.fields.emplace_back(rest.substr(0, blank));
       rest.remove_prefix(std::min(blank + 1, rest.size()));
     }
+    if (!setup.stock_from.empty())
+      g.fields.push_back(field("FROM", safe_token(setup.stock_from, 24)));
     out.push_back(std::move(g));
   }
   return out;

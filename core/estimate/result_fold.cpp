@@ -303,6 +303,8 @@ void ResultFolder::finish(double total_s) {
     const RemovalResult r = removals_[k]->summary();
     setup_totals_[k].stock = r.stock_description;
     setup_totals_[k].stock_source = r.stock_source;
+    setup_totals_[k].stock_from = r.stock_from;
+    setup_totals_[k].stock_origin = r.stock_origin;
     if (r.stock_source != StockSource::None) setup_totals_[k].stock_box = r.stock_box;
   }
   out_.setups = setup_totals_;

@@ -184,6 +184,8 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   totals_.stock_source = spec.kind == StockSpec::Kind::Default ? StockSource::Guessed
                          : spec.stated_by_program              ? StockSource::Program
                                                                : StockSource::Given;
+  totals_.stock_from = spec.kind == StockSpec::Kind::Default ? "guess" : spec.from;
+  totals_.stock_origin = spec.origin;
   totals_.stock_box = stock_->bounds();
   if (options.mirror_z)
     totals_.stock_box.zmin = -stock_->bounds().zmax,

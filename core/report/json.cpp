@@ -179,6 +179,10 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
   write_time_split(w, e.time, removal != nullptr);
   w.field("removed_mm3", energy.removed_mm3);
   w.field("stock", removal ? removal->stock_description : std::string("not simulated"));
+  // Where the (first setup's) stock came from: docs/stock.md lists the kinds.
+  w.field("stock_from", e.setups.empty() || e.setups.front().stock_from.empty()
+                            ? std::string("none")
+                            : e.setups.front().stock_from);
   if (removal) {
     w.key("removal");
     w.begin_object();
@@ -202,6 +206,8 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
     w.field("removed_mm3", setup.removed_mm3);
     w.field("stock", setup.stock.empty() ? std::string("not simulated") : setup.stock);
     w.field("stock_source", stock_source_name(setup.stock_source));
+    w.field("stock_from", setup.stock_from.empty() ? std::string("none") : setup.stock_from);
+    if (!setup.stock_origin.empty()) w.field("stock_origin", setup.stock_origin);
     if (setup.stock_box) {
       const Box3& b = *setup.stock_box;
       w.key("stock_box_mm");

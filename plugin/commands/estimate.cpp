@@ -111,6 +111,14 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
 }
 
 // Time, air cutting, volume and energy per operation.
+// Where a setup's stock came from: its kind (docs/stock.md) and where it is written.
+void print_stock_from(const SetupSummary& s) {
+  if (s.stock_from.empty() || s.stock_from == "none") return;
+  std::printf("              from %s%s%s%s\n", s.stock_from.c_str(),
+              s.stock_origin.empty() ? "" : " (", s.stock_origin.c_str(),
+              s.stock_origin.empty() ? "" : ")");
+}
+
 void print_operations(const Estimate& e) {
   const std::vector<OperationSummary>& ops = e.operations;
   if (ops.empty()) return;
@@ -169,6 +177,7 @@ int run_estimate(const EstimateCliOptions& o) {
           e.setups.size() > 1 ? "one per setup (below)" : e.removal->stock_description.c_str(),
           std::string(engine_name(e.removal->engine)).c_str(), e.removal->grid.dx,
           e.removal->grid.columns(), double(e.removal->memory_bytes) / (1 << 20));
+    if (e.removal && e.setups.size() == 1) print_stock_from(e.setups.front());
     if (e.setups.size() > 1)
       for (std::size_t k = 0; k < e.setups.size(); ++k) {
         const SetupSummary& s = e.setups[k];
@@ -176,6 +185,7 @@ int run_estimate(const EstimateCliOptions& o) {
                     s.first_line + 1, s.reason.c_str(), s.time_s, s.energy_j / 1e3, e.inch ? 3 : 0,
                     e.inch ? s.removed_mm3 / kMm3PerIn3 : s.removed_mm3, e.inch ? "in^3" : "mm^3");
         if (!s.stock.empty()) std::printf("              stock %s\n", s.stock.c_str());
+        if (e.removal) print_stock_from(s);
       }
     print_operations(e);
     if (!e.unsimulated_tools.empty()) {

@@ -216,6 +216,8 @@ struct SetupSummary {
   std::string reason; // "the program's start", "M0 at line 41, then G55"
   std::string stock;  // the stock it cuts, as RemovalResult::stock_description says
   StockSource stock_source = StockSource::None; // given, the program's, guessed from its cuts
+  std::string stock_from;        // the kind of its source (RemovalResult::stock_from)
+  std::string stock_origin;      // where it is written (RemovalResult::stock_origin)
   std::optional<Box3> stock_box; // program coordinates, mm; empty: no stock simulated
   double time_s = 0, energy_j = 0, removed_mm3 = 0;
 };

@@ -127,8 +127,14 @@ struct StockSpec {
   std::array<LengthUnit, 6> box_units{}; // of xmin, ymin, zmin, xmax, ymax, zmax
   std::string stl_path;                  // Kind::Stl
   LengthUnit stl_units = LengthUnit::Program;
-  // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", ...
+  // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", "Vectric
+  // Material Size block, lines 5-7", "CAMotics project bear.camotics", ...
   std::string origin;
+  // The kind of that source, one word for the JSON and the header (docs/stock.md lists them):
+  // "option", "hook-fusion360", "job-file", "stock-file", "camotics", "freecad-job",
+  // "user-config", "vectric", "stock-comment", "sinumerik-workpiece", "heidenhain-blk-form".
+  // Empty for Kind::Default (the stock is guessed from the cuts).
+  std::string from;
   bool stated_by_program = false; // read from the program's CAM comments (cam_stock.hpp)
   // Kind::Box known by its size only ("(STOCK 4.125 x 3.625 x 1.000)"): `box` runs from 0 to
   // the size, and the stock is placed where the cutting moves fit it (place_sized_stock).
@@ -524,6 +530,8 @@ struct RemovalResult {
   double removed_mm3 = 0;
   std::string stock_description; // which stock was used, e.g. "box ... (from cutting moves)"
   StockSource stock_source = StockSource::None;
+  std::string stock_from = "none"; // StockSpec::from; "guess" for a box of the cuts
+  std::string stock_origin;        // StockSpec::origin, where that stock is written
   Box3 stock_box;               // its bounds in program coordinates (mm), as the program writes Z
   std::size_t memory_bytes = 0; // memory held by the stock model
   std::vector<Diagnostic> diagnostics; // collisions, unknown tools, ...

@@ -49,16 +49,60 @@ double default_grid_spacing(const std::map<int, Tool>& tools) {
   return std::clamp(smallest / 120.0, 0.01, 1.0);
 }
 
-double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
-                              double work_columns) {
-  const double fine = default_grid_spacing(tools);
-  double smallest = 0;
+namespace {
+
+// The coarsest grid the automatic choice goes to: a twentieth of the largest diameter (a face
+// mill's passes), but no more than an eighth of the smallest, so that the smallest tool's cuts
+// still span several columns (their MRR per block stays readable), and at most 2 mm.
+double coarsest_grid_spacing(const std::map<int, Tool>& tools) {
+  double smallest = 0, largest = 0;
   for (const auto& [number, tool] : tools)
-    if (tool.diameter_mm > 0 && (smallest == 0 || tool.diameter_mm < smallest))
-      smallest = tool.diameter_mm;
+    if (tool.diameter_mm > 0) {
+      smallest = smallest > 0 ? std::min(smallest, tool.diameter_mm) : tool.diameter_mm;
+      largest = std::max(largest, tool.diameter_mm);
+    }
+  return std::max(default_grid_spacing(tools), std::min({largest / 20.0, smallest / 8.0, 2.0}));
+}
+
+// The volume a cut gains or loses along its edges on the grid is about this share of the
+// spacing over the tool's diameter: 0.06 on single cuts (docs/removal.md's table: 0.1-0.5% at
+// d/20, 0.02-0.1% at d/60), 0.1 on the worst real program measured (the FreeCAD sample job, a
+// pocket and contours: 0.17% at d/60, docs/removal.md).
+constexpr double kEdgeErrorPerSpacing = 0.1;
+// What the automatic grid aims at: removed volume within 0.1% (and the MRR of blocks that cut
+// more than a sliver with it).
+constexpr double kVolumeErrorTarget = 0.001;
+// Below this many columns (about 32 MiB of stock model) the finest grid costs little.
+constexpr double kSmallJobColumns = 1e6;
+
+} // namespace
+
+double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools) {
+  // Each tool's cuts, weighted by the share of the removal they make (the area they sweep: their
+  // length times the diameter): the spacing that keeps the sum of their edge errors within the
+  // target.
+  double weight = 0, per_diameter = 0, smallest = 0;
+  for (const auto& [number, tool] : tools) {
+    if (!(tool.diameter_mm > 0)) continue;
+    const double d = tool.diameter_mm;
+    smallest = smallest > 0 ? std::min(smallest, d) : d;
+    const double w = extent.cutting_length(number) * d;
+    weight += w;
+    per_diameter += w / d;
+  }
+  if (smallest == 0) return 0.1;
+  const double fine = default_grid_spacing(tools);
+  if (!(weight > 0)) return std::clamp(smallest / 60.0, fine, coarsest_grid_spacing(tools));
+  const double spacing = kVolumeErrorTarget / kEdgeErrorPerSpacing / (per_diameter / weight);
+  return std::clamp(spacing, fine, coarsest_grid_spacing(tools));
+}
+
+double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
+                              double work_columns, double stock_area_mm2) {
+  const double accurate = accuracy_grid_spacing(extent, tools);
   // Coarser than a twentieth of the diameter, single cuts lose more than half a percent of their
   // volume (docs/removal.md).
-  const double coarse = smallest > 0 ? std::clamp(smallest / 20.0, fine, 2.0) : fine;
+  const double coarse = std::max(accurate, coarsest_grid_spacing(tools));
   // Columns visited: per step of length s, a band 2r wide and 2r + s long, over dx^2 each.
   auto work = [&](double dx) {
     const double s = recommended_sample_step(tools, dx);
@@ -69,7 +113,13 @@ double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Too
     }
     return w;
   };
-  double dx = fine;
+  // A small job keeps the finest grid: it costs little there, and a thin pass (a finishing
+  // pass half a millimetre wide) has its MRR off by up to a column's width over its own width.
+  const double fine = default_grid_spacing(tools);
+  if (stock_area_mm2 > 0 && fine < accurate && stock_area_mm2 / (fine * fine) <= kSmallJobColumns &&
+      work(fine) <= work_columns / 4)
+    return fine;
+  double dx = accurate;
   while (dx < coarse && work(dx) > work_columns)
     dx = std::min(coarse, dx * 1.25);
   return dx;

@@ -43,7 +43,10 @@ void check_cut(const Table2Cut& cut, double step, double tolerance, bool check_t
     StockSpec spec;
     spec.kind = StockSpec::Kind::Box;
     spec.box = stock;
-    const RemovalResult r = simulate_removal(p.commands(), tl, tools, spec);
+    // The finest automatic grid (d/120): what the bounds below are worked out for.
+    RemovalOptions options;
+    options.grid_mm = default_grid_spacing(tools);
+    const RemovalResult r = simulate_removal(p.commands(), tl, tools, spec, options);
     REQUIRE(r.diagnostics.empty());
 
     const double expected = cut.depth_mm * cut.width_mm * cut.feed_mm_min / 60.0;

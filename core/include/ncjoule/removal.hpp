@@ -466,15 +466,17 @@ std::vector<double> voxel_layer_bounds(const GridFrame& grid);
 
 struct RemovalOptions {
   EngineKind engine = EngineKind::Dexel;
-  double grid_mm = 0;                     // 0: automatic (automatic_grid_spacing, then budgets)
-  std::size_t max_columns = 40'000'000;   // the automatic grid is coarsened (with a note)
-  std::size_t max_voxels = 2'000'000'000; // beyond these, or beyond the memory budget
+  double grid_mm = 0; // 0: automatic (automatic_grid_spacing, then budgets)
+  // The automatic grid is coarsened (with a note) beyond 4M columns (about 128 MiB of stock
+  // model), beyond max_voxels, or beyond the memory budget: caps, not what chooses the grid.
+  std::size_t max_columns = 4'000'000;
+  std::size_t max_voxels = 2'000'000'000;
   // Memory the stock model may take; 0: kDefaultRemovalMemoryBudget. A grid given with grid_mm
   // that needs more is refused (an error names the budget); the automatic one is coarsened.
   std::size_t memory_budget_bytes = 0;
   // The automatic grid keeps the removal work within about this many column visits (see
   // automatic_grid_spacing).
-  double work_columns = 4e8;
+  double work_columns = 1.5e8;
   std::string source_path; // file name used in diagnostics
   // The program's +Z points into the work (ZDirection::Down): removal negates Z, of the moves
   // and of a given stock (box or STL, in program coordinates). The extent that sizes the default
@@ -492,12 +494,20 @@ inline constexpr std::size_t kDefaultRemovalMemoryBudget = std::size_t(1) << 30;
 // about 0.05% of the exact ones at this spacing on the closed-form cases (docs/removal.md gives
 // the error against the grid spacing).
 double default_grid_spacing(const std::map<int, Tool>& tools);
-// The grid removal uses when none is given: default_grid_spacing where the program is small
-// enough, else coarser, up to a twentieth of the smallest tool diameter, so that the work (steps
-// times the columns each covers, estimated from the cutting length of each tool) stays within
-// `work_columns`. Larger programs get a coarser grid and stay fast; short ones stay exact.
+// The grid the figures need: the spacing at which the volume removed gains or loses about 0.1%
+// along the cuts' edges (an edge error of about 0.06 x spacing / diameter per cut,
+// docs/removal.md), each tool weighted by the area it sweeps (its cutting length times its
+// diameter). Never finer than default_grid_spacing, nor coarser than a twentieth of the largest
+// tool (at most 2 mm). It follows the job alone: not the memory of the machine it runs on.
+double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools);
+// The grid removal uses when none is given: accuracy_grid_spacing, coarsened (up to a twentieth
+// of the largest tool diameter, 2 mm at most) while the work (steps times the columns each
+// covers, estimated from the cutting length of each tool) would exceed `work_columns`; the
+// simulator then caps it by RemovalOptions::max_columns and the memory budget, with a note. A
+// small job (given `stock_area_mm2`, the stock's XY area: at most 1M columns at
+// default_grid_spacing, and a quarter of the work) keeps default_grid_spacing.
 double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
-                              double work_columns = 4e8);
+                              double work_columns = 1.5e8, double stock_area_mm2 = 0);
 // The max_sample_step_mm to ask the planner for: steps as long as the grid spacing, or a quarter
 // of the smallest tool radius if that is longer, at most 1 mm. A step's sweep is exact along
 // it, so the step length sets only how finely MRR is resolved along a move (and the chords of

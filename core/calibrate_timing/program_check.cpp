@@ -104,12 +104,19 @@ std::vector<ProgramCheck> check_programs(const LogEvidence& evidence,
       if (values.first.size() * 2 < c.usable_runs) continue; // shown this way in few runs
       BlockCheck b;
       b.first = range.first;
-      b.next = range.second;
+      // The last stretch runs to the end of the program.
+      b.next = std::min<long long>(range.second,
+                                   static_cast<long long>(program.source.lines.size()) + 1);
       b.measured = range_of(values.first);
       b.predicted_s = median_of(values.second);
       if (b.measured.median < 0.5) continue;
-      if (b.first >= 1 && std::size_t(b.first) <= program.source.lines.size())
-        b.text = shortened(program.source.line_text(std::size_t(b.first) - 1));
+      // The line that takes the most of the stretch says what it is (a tool change after a
+      // header, an M30 after the lines it hides).
+      int telling = b.first;
+      for (int l = b.first; l < b.next && l < int(t.a.size()); ++l)
+        if (t.between(l, l + 1) > t.between(telling, telling + 1)) telling = l;
+      if (telling >= 1 && std::size_t(telling) <= program.source.lines.size())
+        b.text = shortened(program.source.line_text(std::size_t(telling) - 1));
       c.worst_blocks.push_back(b);
     }
     std::sort(c.worst_blocks.begin(), c.worst_blocks.end(),

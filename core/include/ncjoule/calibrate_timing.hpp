@@ -112,7 +112,7 @@ struct OperationCheck {
 
 struct BlockCheck {
   int first = 0, next = 0; // lines first <= line < next (the log shows the first)
-  std::string text;        // the first line's text, shortened
+  std::string text;        // the text of its line that takes the most time, shortened
   MeasuredRange measured;
   double predicted_s = 0;
 };
@@ -187,9 +187,9 @@ struct TimingFitOptions {
   std::vector<TimingKey> keys; // empty: every key the base profile's rules use
   int max_iterations = 20;
   double min_stretch_s = 2.0;   // consecutive stretches are joined until they last this long
-  double huber_sigma = 2.0;     // robust loss scale, in standard deviations of a stretch
+  double huber_sigma = 10.0;    // robust loss scale, in standard deviations of a stretch
   double stretch_sigma_s = 0.1; // a stretch's time is known to a sample period
-  double stretch_sigma_rel = 0.03;
+  double stretch_sigma_rel = 0.0;
   bool tie_axes =
       true; // fit one acceleration (and one rapid rate) for axes the logs cannot tell apart
   double prior_sigma = 0.5; // the plan's factors are held to 1 +- this (a weak prior at the base)

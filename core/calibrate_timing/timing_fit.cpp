@@ -372,41 +372,98 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
                         : "not in the logs (no logged stretch depends on it)";
     }
   }
-  {
-    std::vector<std::size_t> live;
-    for (std::size_t c = 0; c < columns.size(); ++c)
-      if (keep[c]) live.push_back(c);
-    if (!live.empty()) {
-      Eigen::MatrixXd a(Eigen::Index(n_obs), Eigen::Index(live.size()));
-      for (std::size_t i = 0; i < live.size(); ++i)
-        a.col(Eigen::Index(i)) = columns[live[i]].values.normalized();
-      Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-      const Eigen::MatrixXd r = qr.matrixR().template triangularView<Eigen::Upper>();
-      const auto& perm = qr.colsPermutation().indices();
-      const double r0 = std::abs(r(0, 0));
-      for (Eigen::Index i = 0; i < Eigen::Index(live.size()); ++i) {
-        if (std::abs(r(i, i)) >= 0.05 * r0) continue; // explains at least 5% on its own
-        const std::size_t c = live[std::size_t(perm[i])];
-        keep[c] = 0;
-        // The kept column it resembles most.
-        double best = 0;
-        std::string like;
-        for (std::size_t d : live)
-          if (keep[d] && d != c) {
-            const double cs = std::abs(cosine(columns[c].values, columns[d].values));
-            if (cs > best) {
-              best = cs;
-              like = columns[d].label;
+  // Collinear keys (QR) and keys barely told are found in turn: a key held as like another is
+  // looked at again once that other is held as barely told.
+  const std::vector<char> in_logs = keep;
+  std::vector<char> barely(columns.size(), 0);
+  for (int pass = 0; pass < 3; ++pass) {
+    bool more = false;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      keep[c] = in_logs[c] && !barely[c];
+      if (keep[c]) held_why.erase(c);
+    }
+    {
+      std::vector<std::size_t> live;
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (keep[c]) live.push_back(c);
+      if (!live.empty()) {
+        Eigen::MatrixXd a(Eigen::Index(n_obs), Eigen::Index(live.size()));
+        for (std::size_t i = 0; i < live.size(); ++i)
+          a.col(Eigen::Index(i)) = columns[live[i]].values.normalized();
+        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+        const Eigen::MatrixXd r = qr.matrixR().template triangularView<Eigen::Upper>();
+        const auto& perm = qr.colsPermutation().indices();
+        const double r0 = std::abs(r(0, 0));
+        for (Eigen::Index i = 0; i < Eigen::Index(live.size()); ++i) {
+          if (std::abs(r(i, i)) >= 0.05 * r0) continue; // explains at least 5% on its own
+          const std::size_t c = live[std::size_t(perm[i])];
+          keep[c] = 0;
+          // The kept column it resembles most.
+          double best = 0;
+          std::string like;
+          for (std::size_t d : live)
+            if (keep[d] && d != c) {
+              const double cs = std::abs(cosine(columns[c].values, columns[d].values));
+              if (cs > best) {
+                best = cs;
+                like = columns[d].label;
+              }
             }
-          }
-        char text[256];
-        std::snprintf(text, sizeof text,
-                      "cannot be told apart from %s in these logs (their effects on the logged "
-                      "stretches correlate at %.2f)",
-                      like.c_str(), best);
-        held_why[c] = text;
+          char text[256];
+          std::snprintf(text, sizeof text,
+                        "cannot be told apart from %s in these logs (their effects on the logged "
+                        "stretches correlate at %.2f)",
+                        like.c_str(), best);
+          held_why[c] = text;
+        }
       }
     }
+    // A planned key the logs barely tell (its expected standard error, from the sensitivities and
+    // the base's misfit, above half its value) is held too: fitted, it would only soak up misfit.
+    {
+      std::vector<std::size_t> live;
+      for (std::size_t c = 0; c < columns.size(); ++c)
+        if (keep[c]) live.push_back(c);
+      if (!live.empty()) {
+        Eigen::MatrixXd a(Eigen::Index(n_obs), Eigen::Index(live.size()));
+        for (std::size_t i = 0; i < live.size(); ++i)
+          a.col(Eigen::Index(i)) = columns[live[i]].values;
+        const Eigen::MatrixXd info = a.transpose() * a;
+        const Eigen::MatrixXd cov = info.completeOrthogonalDecomposition().pseudoInverse();
+        // The misfit left after one linearised step from the base (what the fit will leave, in
+        // stretch standard deviations) scales the standard errors.
+        Eigen::VectorXd misfit(static_cast<Eigen::Index>(n_obs));
+        for (std::size_t o = 0; o < n_obs; ++o) {
+          double p = base_motion[o];
+          for (std::size_t k = 0; k < linear.size(); ++k)
+            p += timing_key_value(base, linear[k]) * model.count(o, k);
+          misfit[Eigen::Index(o)] = (p - observations[o].measured_s) / observations[o].sigma_s;
+        }
+        const Eigen::VectorXd step = cov * (a.transpose() * misfit);
+        const Eigen::VectorXd left = misfit - a * step;
+        const double inflation = std::max(1.0, std::sqrt(left.squaredNorm() / double(n_obs)));
+        for (std::size_t i = 0; i < live.size(); ++i) {
+          const Column& col = columns[live[i]];
+          if (!col.theta) continue;
+          const PlanParameter& p = parameters[col.index];
+          const double scale = p.factor ? 1.0 : std::max(p.initial, 0.05);
+          const double se =
+              std::sqrt(std::max(0.0, cov(Eigen::Index(i), Eigen::Index(i)))) * inflation;
+          if (se > 0.5 * scale) {
+            keep[live[i]] = 0;
+            barely[live[i]] = 1;
+            more = true;
+            char text[200];
+            std::snprintf(
+                text, sizeof text,
+                "the logs barely tell it (it would come out within +- %.0f%% of its value)",
+                100 * se / scale);
+            held_why[live[i]] = text;
+          }
+        }
+      }
+    }
+    if (!more) break;
   }
   // What is held stays as in the base profile.
   std::vector<PlanParameter> fitted_plan;
@@ -561,7 +618,12 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
       f.fitted = true;
       f.value = fitted_plan[j].factor ? f.base * theta[j] : theta[j];
       f.std_error = fitted_plan[j].factor ? f.base * se_theta[j] : se_theta[j];
-      f.why = std::string("fitted from ") + data +
+      const bool at_bound = std::abs(theta[j] - fitted_plan[j].lower) < 1e-6 ||
+                            std::abs(theta[j] - fitted_plan[j].upper) < 1e-6;
+      f.why = std::string(at_bound ? "at the bound of its range (the logs push it further: it "
+                                     "stands in for time the model does not have), "
+                                   : "") +
+              "fitted from " + data +
               (fitted_plan[j].keys.size() > 1 ? " (" + fitted_plan[j].label + ")" : "");
       set_timing_key(fit.machine, k, f.value);
     }

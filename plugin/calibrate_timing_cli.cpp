@@ -204,12 +204,19 @@ int run_timing_calibration(const TimingCalibrationOptions& o) {
   }
   std::string power_source;
   if (const auto power = fit_logged_power(evidence, fit.machine, power_source)) {
-    auto with_power = profile_with_power(*text, o.machine, "", *power, {}, power_source, problems);
-    if (!with_power) {
-      print_diagnostics(problems);
-      return kInputError;
+    std::vector<Diagnostic> power_problems;
+    auto with_power =
+        profile_with_power(*text, o.machine, "", *power, {}, power_source, power_problems);
+    if (with_power) {
+      text = with_power;
+    } else {
+      // The timing stands on its own: a power fit the profile cannot take is said and left out.
+      for (Diagnostic& d : power_problems)
+        d.severity = Severity::Warning;
+      print_diagnostics(power_problems);
+      std::fprintf(stderr, "ncjoule: the power fit is left out of %s; its timing is written\n",
+                   o.output.c_str());
     }
-    text = with_power;
   }
   const std::string error = write_output_file(
       o.output, "# Machine profile written by ncjoule calibrate --timing.\n" + *text);

@@ -99,6 +99,35 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and json.loads(r.stdout or "{}").get("time_s", 0) > 0,
           "the calibrated profile loads and estimates")
 
+    # A log that carries the machine's power: the power model is fitted on the run too (or, when
+    # the fit cannot go into a profile that loads, left out with a warning); the timing is
+    # written either way.
+    powered = os.path.join(tmp, "powered.shdr")
+    spindle, last, lines = 0.0, None, []
+    for line in open(os.path.join(DATA, "cover-run.shdr")).read().splitlines():
+        lines.append(line)
+        fields = line.split("|")
+        if len(fields) >= 3 and fields[1] == "Spindle_Speed":
+            spindle = float(fields[2])
+        if fields[0][:19] != last:
+            last = fields[0][:19]
+            lines.append("%s|kw|%.4f" % (fields[0], (900 + 0.12 * spindle) / 1000))
+    with open(powered, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    mapping = os.path.join(tmp, "power.toml")
+    with open(mapping, "w") as f:
+        f.write('[items]\npower = "kw"\n[scale]\npower = 1000\n')
+    out_power = os.path.join(tmp, "powered.toml")
+    r = run("calibrate", "--timing", "-m", HURCO, "--program", COVER, "--log", powered,
+            "--devices", DEVICES, "--log-mapping", mapping, "-o", out_power)
+    check(r.returncode == 0 and "power fit on run of cover.nc" in r.stdout and
+          "logged electrical power" in r.stdout,
+          f"a logged power is fitted ({r.stderr[-300:]})")
+    check("power = kw (mapping file)" in r.stdout, "the mapping file names the power item")
+    check(os.path.exists(out_power) and run("estimate", COVER, "-m", out_power,
+                                            "--no-removal").returncode == 0,
+          "the profile is written and loads")
+
     # Nothing usable: nothing written.
     none = os.path.join(tmp, "none.toml")
     r = run("calibrate", "--timing", "-m", HURCO, "--program", COVER, "--log",

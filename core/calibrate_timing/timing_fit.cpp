@@ -19,8 +19,12 @@
 namespace ncjoule {
 namespace {
 
+using timing_detail::cosine;
+using timing_detail::KeyColumn;
+using timing_detail::KeySelection;
 using timing_detail::Observation;
 using timing_detail::PlanParameter;
+using timing_detail::select_keys;
 using timing_detail::TimingModel;
 
 std::vector<TimingKey> default_keys(const MachineProfile& base) {
@@ -130,18 +134,6 @@ std::string axis_list(const std::vector<TimingKey>& keys) {
   return s;
 }
 
-double cosine(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  const double na = a.norm(), nb = b.norm();
-  return na > 0 && nb > 0 ? a.dot(b) / (na * nb) : 0;
-}
-
-struct Column {
-  std::string label;
-  Eigen::VectorXd values; // d(stretch time)/d(parameter) / sigma, per observation
-  bool theta = false;
-  std::size_t index = 0; // into the plan parameters or the linear keys
-};
-
 } // namespace
 
 TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
@@ -160,76 +152,13 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
                          [&](const FittedTimingKey& f) { return f.key == k; });
   };
 
-  // The observations: the undisturbed stretches of every usable run, consecutive ones joined
-  // until they last min_stretch_s (a line's time the log gives to its neighbour is then inside
-  // one observation), none across a change of override. A run whose rapid override was not
-  // logged gives its stretches without rapids only.
-  std::vector<Observation> observations;
-  std::vector<char> run_used(evidence.program_runs.size(), 0);
-  std::size_t left_out_rapid = 0;
-  for (std::size_t i = 0; i < evidence.program_runs.size(); ++i) {
-    const LoggedRun& r = evidence.program_runs[i];
-    if (!r.usable) continue;
-    // Unknown only where the log holds a rapid override at all: a log that never records one is
-    // taken to run at 100%.
-    const std::size_t device = evidence.runs[r.run].device;
-    const bool logs_overrides =
-        device < evidence.log.items.size() &&
-        !evidence.log.items[device][std::size_t(LogSignal::RapidOverride)].empty();
-    const bool rapid_known = evidence.alignments[r.run].rapid_override_known || !logs_overrides;
-    const Estimate& e = evidence.programs[r.program].estimate;
-    std::vector<int> rapid_before(evidence.programs[r.program].source.lines.size() + 2, 0);
-    for (const LineSummary& l : e.lines)
-      if (l.kind == LineKind::Rapid && l.time_s > 0 &&
-          std::size_t(l.line) + 2 < rapid_before.size())
-        rapid_before[std::size_t(l.line) + 2] = 1; // marks line l+1 (1-based); summed below
-    for (std::size_t l = 1; l < rapid_before.size(); ++l)
-      rapid_before[l] += rapid_before[l - 1];
-    auto has_rapid = [&](int first, int next) {
-      const int n = int(rapid_before.size()) - 1;
-      return rapid_before[std::size_t(std::min(next, n))] -
-                 rapid_before[std::size_t(std::min(first, n))] >
-             0;
-    };
-    std::optional<Observation> open;
-    auto close = [&] {
-      if (!open) return;
-      if (!rapid_known && has_rapid(open->first, open->next))
-        ++left_out_rapid;
-      else {
-        open->sigma_s = options.stretch_sigma_s + options.stretch_sigma_rel * open->measured_s;
-        observations.push_back(*open);
-        run_used[i] = 1;
-      }
-      open.reset();
-    };
-    for (const LineGroup& g : r.groups) {
-      if (g.disturbed) {
-        close();
-        continue;
-      }
-      const double rapid = evidence.rapid_at(r, g.start_s), feed = evidence.feed_at(r, g.start_s);
-      if (open && (open->rapid != rapid || open->feed != feed || open->next != g.first)) close();
-      if (!open) {
-        open = Observation{};
-        open->program = r.program;
-        open->run = i;
-        open->first = g.first;
-        open->rapid = rapid;
-        open->feed = feed;
-      }
-      open->next = g.next;
-      open->measured_s += g.duration_s;
-      if (open->measured_s >= options.min_stretch_s) close();
-    }
-    close();
-  }
-  if (left_out_rapid > 0)
-    fit.notes.push_back(std::to_string(left_out_rapid) +
-                        " stretches with rapids are left out: their runs' rapid override was not "
-                        "logged where the log records it");
+  std::vector<std::string> obs_notes;
+  std::size_t runs_used = 0;
+  const std::vector<Observation> observations =
+      timing_detail::fit_observations(evidence, options, runs_used, obs_notes);
+  fit.notes.insert(fit.notes.end(), obs_notes.begin(), obs_notes.end());
   fit.stretches = observations.size();
-  fit.runs = std::size_t(std::count(run_used.begin(), run_used.end(), 1));
+  fit.runs = runs_used;
   if (observations.empty()) {
     fit.message = "no usable run of the programs given: nothing to fit";
     for (FittedTimingKey& f : fit.keys)
@@ -343,128 +272,32 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
       parameter_columns.push_back(each_column[j]);
     }
 
-  // Which parameters the logs determine: none that no stretch depends on, and, by a QR with
-  // column pivoting of the unit columns, none that the others already explain.
-  std::vector<Column> columns;
+  // Which keys the logs determine (key_identifiability.cpp), from the sensitivities and the
+  // base profile's misfit.
+  Eigen::VectorXd misfit(static_cast<Eigen::Index>(n_obs));
+  for (std::size_t o = 0; o < n_obs; ++o) {
+    double p = base_motion[o];
+    for (std::size_t k = 0; k < linear.size(); ++k)
+      p += timing_key_value(base, linear[k]) * model.count(o, k);
+    misfit[Eigen::Index(o)] = (p - observations[o].measured_s) / observations[o].sigma_s;
+  }
+  std::vector<KeyColumn> columns;
   for (std::size_t j = 0; j < parameters.size(); ++j)
-    columns.push_back({parameters[j].label, parameter_columns[j], true, j});
+    columns.push_back({parameters[j].label, parameter_columns[j], true, j,
+                       parameters[j].factor ? 1.0 : std::max(parameters[j].initial, 0.05)});
   for (std::size_t k = 0; k < linear.size(); ++k) {
     Eigen::VectorXd c(n_obs);
     std::size_t evidence_lines = 0;
     for (std::size_t o = 0; o < n_obs; ++o) {
-      c[o] = model.count(o, k) / observations[o].sigma_s;
+      c[Eigen::Index(o)] = model.count(o, k) / observations[o].sigma_s;
       evidence_lines += model.count(o, k) != 0;
     }
     entry(linear[k]).evidence = evidence_lines;
-    columns.push_back({timing_key_name(linear[k]), c, false, k});
+    columns.push_back({timing_key_name(linear[k]), c, false, k, 1.0});
   }
-  std::vector<char> keep(columns.size(), 1);
-  std::map<std::size_t, std::string> held_why;
-  for (std::size_t c = 0; c < columns.size(); ++c) {
-    // A stretch is known to a tenth of a second: a key that moves no stretch by a millisecond
-    // for a 10% change (or one second of its own) is not in these logs.
-    const double effect = columns[c].values.cwiseAbs().maxCoeff() * (columns[c].theta ? 0.1 : 1.0) *
-                          options.stretch_sigma_s;
-    if (!(effect > 1e-3)) {
-      keep[c] = 0;
-      held_why[c] = columns[c].theta
-                        ? "not in the logs (no logged stretch depends on it: no move reaches it)"
-                        : "not in the logs (no logged stretch depends on it)";
-    }
-  }
-  // Collinear keys (QR) and keys barely told are found in turn: a key held as like another is
-  // looked at again once that other is held as barely told.
-  const std::vector<char> in_logs = keep;
-  std::vector<char> barely(columns.size(), 0);
-  for (int pass = 0; pass < 3; ++pass) {
-    bool more = false;
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      keep[c] = in_logs[c] && !barely[c];
-      if (keep[c]) held_why.erase(c);
-    }
-    {
-      std::vector<std::size_t> live;
-      for (std::size_t c = 0; c < columns.size(); ++c)
-        if (keep[c]) live.push_back(c);
-      if (!live.empty()) {
-        Eigen::MatrixXd a(Eigen::Index(n_obs), Eigen::Index(live.size()));
-        for (std::size_t i = 0; i < live.size(); ++i)
-          a.col(Eigen::Index(i)) = columns[live[i]].values.normalized();
-        Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-        const Eigen::MatrixXd r = qr.matrixR().template triangularView<Eigen::Upper>();
-        const auto& perm = qr.colsPermutation().indices();
-        const double r0 = std::abs(r(0, 0));
-        for (Eigen::Index i = 0; i < Eigen::Index(live.size()); ++i) {
-          if (std::abs(r(i, i)) >= 0.05 * r0) continue; // explains at least 5% on its own
-          const std::size_t c = live[std::size_t(perm[i])];
-          keep[c] = 0;
-          // The kept column it resembles most.
-          double best = 0;
-          std::string like;
-          for (std::size_t d : live)
-            if (keep[d] && d != c) {
-              const double cs = std::abs(cosine(columns[c].values, columns[d].values));
-              if (cs > best) {
-                best = cs;
-                like = columns[d].label;
-              }
-            }
-          char text[256];
-          std::snprintf(text, sizeof text,
-                        "cannot be told apart from %s in these logs (their effects on the logged "
-                        "stretches correlate at %.2f)",
-                        like.c_str(), best);
-          held_why[c] = text;
-        }
-      }
-    }
-    // A planned key the logs barely tell (its expected standard error, from the sensitivities and
-    // the base's misfit, above half its value) is held too: fitted, it would only soak up misfit.
-    {
-      std::vector<std::size_t> live;
-      for (std::size_t c = 0; c < columns.size(); ++c)
-        if (keep[c]) live.push_back(c);
-      if (!live.empty()) {
-        Eigen::MatrixXd a(Eigen::Index(n_obs), Eigen::Index(live.size()));
-        for (std::size_t i = 0; i < live.size(); ++i)
-          a.col(Eigen::Index(i)) = columns[live[i]].values;
-        const Eigen::MatrixXd info = a.transpose() * a;
-        const Eigen::MatrixXd cov = info.completeOrthogonalDecomposition().pseudoInverse();
-        // The misfit left after one linearised step from the base (what the fit will leave, in
-        // stretch standard deviations) scales the standard errors.
-        Eigen::VectorXd misfit(static_cast<Eigen::Index>(n_obs));
-        for (std::size_t o = 0; o < n_obs; ++o) {
-          double p = base_motion[o];
-          for (std::size_t k = 0; k < linear.size(); ++k)
-            p += timing_key_value(base, linear[k]) * model.count(o, k);
-          misfit[Eigen::Index(o)] = (p - observations[o].measured_s) / observations[o].sigma_s;
-        }
-        const Eigen::VectorXd step = cov * (a.transpose() * misfit);
-        const Eigen::VectorXd left = misfit - a * step;
-        const double inflation = std::max(1.0, std::sqrt(left.squaredNorm() / double(n_obs)));
-        for (std::size_t i = 0; i < live.size(); ++i) {
-          const Column& col = columns[live[i]];
-          if (!col.theta) continue;
-          const PlanParameter& p = parameters[col.index];
-          const double scale = p.factor ? 1.0 : std::max(p.initial, 0.05);
-          const double se =
-              std::sqrt(std::max(0.0, cov(Eigen::Index(i), Eigen::Index(i)))) * inflation;
-          if (se > 0.5 * scale) {
-            keep[live[i]] = 0;
-            barely[live[i]] = 1;
-            more = true;
-            char text[200];
-            std::snprintf(
-                text, sizeof text,
-                "the logs barely tell it (it would come out within +- %.0f%% of its value)",
-                100 * se / scale);
-            held_why[live[i]] = text;
-          }
-        }
-      }
-    }
-    if (!more) break;
-  }
+  const KeySelection selected = select_keys(columns, misfit, options.stretch_sigma_s);
+  const std::vector<char>& keep = selected.keep;
+  std::map<std::size_t, std::string> held_why = selected.why;
   // What is held stays as in the base profile.
   std::vector<PlanParameter> fitted_plan;
   std::vector<std::size_t> fitted_linear;

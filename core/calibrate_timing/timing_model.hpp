@@ -6,6 +6,8 @@
 // theta the solver tries, every program at once.
 #pragma once
 
+#include <Eigen/Dense>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -30,6 +32,36 @@ struct PlanParameter {
   double initial = 1, lower = 0.2, upper = 5, step = 0.01;
   std::string label;
 };
+
+// The undisturbed stretches of every usable run, consecutive ones joined until they last
+// options.min_stretch_s (a line's time the log gives to its neighbour is then inside one
+// observation), none across a change of override; a run whose rapid override was not logged
+// (where the log records one) gives its stretches without rapids only. `runs_used`: the runs
+// that gave any; `notes`: what was left out.
+std::vector<Observation> fit_observations(const LogEvidence& evidence,
+                                          const TimingFitOptions& options, std::size_t& runs_used,
+                                          std::vector<std::string>& notes);
+
+// A key's sensitivity: d(stretch time)/d(key) / sigma, per observation.
+struct KeyColumn {
+  std::string label;
+  Eigen::VectorXd values;
+  bool theta = false;    // a planned key (a factor, or the ratio's own value)
+  std::size_t index = 0; // into the plan parameters or the linear keys
+  double scale = 1;      // what "half its value" is for a planned key
+};
+struct KeySelection {
+  std::vector<char> keep;
+  std::map<std::size_t, std::string> why; // of each key held
+};
+// key_identifiability.cpp. `misfit`: the base profile's residuals over sigma.
+KeySelection select_keys(const std::vector<KeyColumn>& columns, const Eigen::VectorXd& misfit,
+                         double sigma_s);
+
+inline double cosine(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  const double na = a.norm(), nb = b.norm();
+  return na > 0 && nb > 0 ? a.dot(b) / (na * nb) : 0;
+}
 
 class TimingModel {
 public:

@@ -129,7 +129,7 @@ TEST_CASE("align: N numbers, holds, restarts and overrides") {
     CHECK_FALSE(a[0].usable);
     CHECK(mentions(a[0].why, "run backwards at 00:00:06"));
   }
-  SUBCASE("a logged rapid override is used; the knob at zero holds the run") {
+  SUBCASE("a logged rapid override is used, and the knob at zero holds the run") {
     // (Rapid_Override is not a type name: a device file or mapping says what it is.)
     LogMapping mapping;
     mapping.items[LogSignal::RapidOverride] = "Rapid_Override";

@@ -9,6 +9,7 @@
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "ncjoule/profile.hpp"
+#include "ncjoule/projects.hpp"
 #include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
 #include "user_config.hpp"
@@ -45,8 +46,21 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
   cmd.add_option("--stock", s.stock,
                  "Stock: box:XMIN,YMIN,ZMIN,XMAX,YMAX,ZMAX or an STL file, in the program's "
                  "units unless a value says its own (box:0,0,-1in,4in,3in,0); default: the job "
-                 "file's, else PROGRAM.stock, else the user config's, else the bounding box of "
-                 "the cutting moves");
+                 "file's, else PROGRAM.stock, else a CAMotics or FreeCAD project beside the "
+                 "program, else the user config's, else the program's header (docs/stock.md), "
+                 "else the bounding box of the cutting moves");
+  cmd.add_option("--stock-from", s.stock_from,
+                 "The CAM hook that passes --stock, named as where the stock came from "
+                 "(fusion360, freecad, ...: lowercase letters, digits and '-'); the hooks ncjoule "
+                 "ships pass it")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const bool ok = !text.empty() && text.size() <= 24 &&
+                            text.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") ==
+                                std::string::npos;
+            return ok ? "" : "must be 1 to 24 lowercase letters, digits or '-'";
+          },
+          "NAME", "hook name"));
   cmd.add_option("--job", s.job,
                  "Job file (TOML): stock = \"box:...\" or stock_stl = \"part.stl\", and "
                  "[[tool]] entries; --stock and --tool override it; default: PROGRAM.ncjoule.toml "
@@ -246,23 +260,45 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   }
   if (!s.material.empty()) options.material = s.material;
   if (options.material.empty()) options.material = s.config_material;
-  // Stock: --stock, the job file's, PROGRAM.stock, the user config's.
-  const TextOrigin stock_option{"--stock '" + s.stock + "'"};
-  const std::pair<const std::string*, const TextOrigin*> stocks[] = {
-      {&s.stock, &stock_option},
-      {&s.program_stock, &s.program_stock_origin},
-      {&s.config_stock, &s.config_stock_origin}};
-  for (const auto& [text, origin] : stocks) {
-    if (text->empty() || (text != &s.stock && options.stock)) continue;
-    std::vector<Diagnostic> problems;
-    options.stock = parse_stock_spec(*text, &problems, *origin);
-    if (!options.stock) {
-      print_diagnostics(problems);
-      // A file's stock is an input problem; the option's a usage one.
-      return exit_code = text == &s.stock ? kUsage : kInputError, std::nullopt;
-    }
-    break;
+  // Stock: --stock, the job file's, PROGRAM.stock, a CAM project beside the program, the user
+  // config's; the program's own comments come after them all (estimate.cpp). docs/stock.md.
+  if (!s.stock_from.empty() && s.stock.empty()) {
+    std::cerr << "ncjoule: --stock-from " << s.stock_from
+              << " names where --stock came from; give --stock too\n";
+    return exit_code = kUsage, std::nullopt;
   }
+  // Parses one stock text into options.stock; false (with the problem printed) when it is bad.
+  auto take = [&](const std::string& text, const TextOrigin& origin, std::string from) {
+    std::vector<Diagnostic> problems;
+    options.stock = parse_stock_spec(text, &problems, origin);
+    if (!options.stock) return print_diagnostics(problems), false;
+    options.stock->from = std::move(from);
+    return true;
+  };
+  if (!s.stock.empty()) {
+    if (!take(s.stock, TextOrigin{"--stock '" + s.stock + "'"},
+              s.stock_from.empty() ? "option" : "hook-" + s.stock_from))
+      return exit_code = kUsage, std::nullopt;
+    if (!s.stock_from.empty())
+      options.stock->origin = "the " + s.stock_from + " hook's --stock '" + s.stock + "'";
+  }
+  if (!options.stock && !s.program_stock.empty() &&
+      !take(s.program_stock, s.program_stock_origin, "stock-file"))
+    return exit_code = kInputError, std::nullopt;
+  // A project beside the program: its stock in its place, its tools under the job file's and
+  // the command line's (and over the program's comments).
+  if (program != "-") {
+    std::vector<Diagnostic> found;
+    if (auto project = project_beside(program, found)) {
+      if (!options.stock && project->stock) options.stock = project->stock;
+      for (const auto& [number, tool] : project->tools)
+        options.tools.emplace(number, tool);
+    }
+    print_diagnostics(found);
+  }
+  if (!options.stock && !s.config_stock.empty() &&
+      !take(s.config_stock, s.config_stock_origin, "user-config"))
+    return exit_code = kInputError, std::nullopt;
   for (const std::string& text : s.tools) {
     std::vector<Diagnostic> problems;
     const auto tool = parse_tool_spec(text, &problems, TextOrigin{"--tool '" + text + "'"});

@@ -17,6 +17,7 @@ struct EstimateSettings {
   std::string machine;
   std::string dialect;
   std::string stock;              // "box:..." or an STL file; empty: the box of the cutting moves
+  std::string stock_from;         // --stock-from: the CAM hook that passed --stock (fusion360, ...)
   std::string job;                // job file (TOML): stock and tool table
   std::vector<std::string> tools; // --tool N:TYPE:D[...], repeatable
   std::string tool_table;         // LinuxCNC .tbl
@@ -35,7 +36,7 @@ struct EstimateSettings {
   TextOrigin program_stock_origin, config_stock_origin; // where those two stocks are written
 };
 
-// Adds --machine, --dialect, --stock, --job, --tool, --tool-table, --tool-units, --macro-dir,
+// Adds --machine, --dialect, --stock, --stock-from, --job, --tool, --tool-table, --tool-units, --macro-dir,
 // --engine,
 // --grid, --no-removal, --co2 and --price to a subcommand.
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);
@@ -53,7 +54,9 @@ bool load_machine(const EstimateSettings& settings, MachineProfile& machine,
 // The pipeline's options for one program ("-": standard input) from the settings, completed from
 // the program's own files and the user config (user_config.hpp). Tools: the job file's, then the
 // command line's, each replacing the one before (and the program's header comments) for the same
-// number. Stock: --stock, the job file's, PROGRAM.stock, the user config's. On a bad setting it
+// number; a project beside the program (projects.hpp) adds the tools it describes under them.
+// Stock: --stock, the job file's, PROGRAM.stock, a project beside the program, the user config's
+// (docs/stock.md). On a bad setting it
 // prints why, sets `exit_code` and returns nullopt.
 std::optional<EstimateOptions> estimate_options(const EstimateSettings& settings,
                                                 const std::string& program, int& exit_code);

@@ -36,6 +36,7 @@ packages=(
   g++-mingw-w64-x86-64-posix binutils-mingw-w64-x86-64 # the Windows x64 cross compiler (posix threads)
   dpkg-dev                                             # apt-get source unpacks with dpkg-source
   cmake ninja-build zip bc
+  libz-mingw-w64-dev                                   # zlib for Windows: FreeCAD documents are zips
   libeigen3-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
 )
 install_packages "${packages[@]}"

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libtbb-dev libceres-dev libspdlog-dev libfmt-dev doctest-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libpugixml-dev                # XML: MTConnect device files and Streams documents (core/logs)
+  zlib1g-dev                    # inflates FreeCAD documents (.FCStd, zips) beside a program
   linuxcnc-uspace               # rs274, the reference G-code interpreter used by the tests
   clang libclang-rt-14-dev      # libFuzzer for scripts/fuzz.sh
   clang-format python3 bc time  # bc: arithmetic in the bench/ scripts; time: peak memory

@@ -140,6 +140,8 @@ std::vector<Group> stocks(const Estimate& estimate) {
       g.fields.emplace_back(rest.substr(0, blank));
       rest.remove_prefix(std::min(blank + 1, rest.size()));
     }
+    if (!setup.stock_from.empty())
+      g.fields.push_back(field("FROM", safe_token(setup.stock_from, 24)));
     out.push_back(std::move(g));
   }
   return out;
@@ -161,6 +163,26 @@ std::vector<Group> setups(const Estimate& estimate) {
     out.push_back(std::move(g));
   }
   return out;
+}
+
+// The range of the figures a guessed stock sets: from no cut to the guess.
+std::vector<Group> guess_range(const Estimate& estimate) {
+  const GuessedFigures g = guessed_figures(estimate);
+  if (!g.guessed) return {};
+  Group r = make_group("GUESSED STOCK RANGE");
+  auto span = [](const std::string& low, const std::string& high) { return low + ".." + high; };
+  r.fields.push_back(
+      field("E", span(format_si(g.energy_j.low, "J"), format_si(g.energy_j.high, "J"))));
+  r.fields.push_back(field(
+      "P_PEAK", span(format_si(g.peak_power_w.low, "W"), format_si(g.peak_power_w.high, "W"))));
+  if (estimate.inch)
+    r.fields.push_back(
+        field("VOL_IN3", span(format_significant(g.removed_mm3.low / kMm3PerIn3, 4, 4),
+                              format_significant(g.removed_mm3.high / kMm3PerIn3, 4, 4))));
+  else
+    r.fields.push_back(field("VOL_MM3", span(format_significant(g.removed_mm3.low, 4, 3),
+                                             format_significant(g.removed_mm3.high, 4, 3))));
+  return {r};
 }
 
 Group components(const Estimate& estimate) {
@@ -319,6 +341,8 @@ std::vector<std::string> summary_lines(const Estimate& estimate, const MachinePr
   wrap(totals(estimate), style, lines);
   wrap(time_split(estimate), style, lines);
   for (const Group& g : stocks(estimate))
+    wrap(g, style, lines);
+  for (const Group& g : guess_range(estimate))
     wrap(g, style, lines);
   for (const Group& g : setups(estimate))
     wrap(g, style, lines);

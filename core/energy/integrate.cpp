@@ -146,7 +146,11 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
     for (std::size_t c = 0; c < kPowerComponentCount; ++c)
       ce.components_j[c] += 0.5 * (a[c] + b[c]) * dt;
     const double peak = std::max(component_sum(a), component_sum(b));
+    constexpr std::size_t kCutting = static_cast<std::size_t>(PowerComponent::Cutting);
+    const double uncut = std::max(component_sum(a) - a[kCutting], component_sum(b) - b[kCutting]);
     ce.peak_power_w = has_power ? std::max(ce.peak_power_w, peak) : peak;
+    ce.peak_power_without_cutting_w =
+        has_power ? std::max(ce.peak_power_without_cutting_w, uncut) : uncut;
     has_power = true;
     note_cutting(seg.start);
     note_cutting(seg.end);

@@ -391,10 +391,16 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
     removal_options.memory_budget_bytes =
         std::max(removal_options.memory_budget_bytes / scan.extents.size(), std::size_t(16) << 20);
     try {
+      std::vector<Diagnostic> header_problems; // a header stock that cannot be used
       const std::optional<StockSpec> from_comments =
-          options.stock ? std::nullopt
-                        : estimate_detail::stock_from_cam_comments(source, e.dialect);
+          options.stock
+              ? std::nullopt
+              : estimate_detail::stock_from_cam_comments(source, e.dialect, 1000, &header_problems);
+      add_diagnostics(e, std::move(header_problems), source.path);
       for (std::size_t k = 0; k < scan.extents.size(); ++k) {
+        // A later setup cuts what the first left: its guessed stock is no larger.
+        if (k > 0 && removals.front()->ready())
+          removal_options.first_setup_stock = removals.front()->summary().stock_box;
         removals.push_back(std::make_unique<RemovalSimulator>(
             setup_stock(options, k, e.inch, from_comments),
             removal_options.mirror_z ? mirrored[k] : scan.extents[k], used, removal_options));

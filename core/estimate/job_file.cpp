@@ -75,6 +75,7 @@ struct JobReader {
       std::vector<Diagnostic> problems;
       if (auto spec = parse_stock_spec(*stock->value<std::string>(), &problems, origin, units)) {
         if (spec->kind == StockSpec::Kind::Stl) spec->stl_path = resolve(spec->stl_path);
+        spec->from = "job-file";
         return spec;
       }
       for (Diagnostic& d : problems)
@@ -90,6 +91,7 @@ struct JobReader {
       spec.stl_path = resolve(*stock_stl->value<std::string>());
       spec.stl_units = units;
       spec.origin = path;
+      spec.from = "job-file";
       return spec;
     }
     return std::nullopt;

@@ -49,6 +49,8 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
       energy_(power, options.energy), operations_(source, dialect) {
   for (const SetupStart& start : starts)
     setup_totals_.push_back(SetupSummary{start.line, start.reason});
+  for (const RemovalSimulator* r : removals_)
+    guessed_setups_.push_back(r->stock_source() == StockSource::Guessed);
   if (setup_totals_.empty()) setup_totals_.push_back(SetupSummary{0, "the program's start"});
 }
 
@@ -91,9 +93,12 @@ void ResultFolder::run_batch() {
     const CommandEnergy energy =
         energy_.add(next_index_ + k, command, timed, removed, segments_, &out_.diagnostics);
     const std::size_t operation = operations_.take(command, timed);
-    fold(command, timed, removed, energy, operation);
-    SetupSummary& setup =
-        setup_totals_[std::min(setups_.of(next_index_ + k), setup_totals_.size() - 1)];
+    const std::size_t setup_index = setups_.of(next_index_ + k);
+    const bool guessed = removal_known && !guessed_setups_.empty() &&
+                         guessed_setups_[std::min(setup_index, guessed_setups_.size() - 1)];
+    fold(command, timed, removed, energy, operation, guessed);
+    follow_guess(timed, removed, energy, guessed);
+    SetupSummary& setup = setup_totals_[std::min(setup_index, setup_totals_.size() - 1)];
     setup.time_s += timed.duration_s;
     setup.energy_j += energy.energy_j;
     if (removed) setup.removed_mm3 += removed->removed_mm3;
@@ -125,9 +130,34 @@ RemovalResult ResultFolder::merged_removal() const {
   return merged;
 }
 
+void ResultFolder::follow_guess(const TimedCommand& timed, const CommandRemoval* removed,
+                                const CommandEnergy& energy, bool stock_guessed) {
+  // A block over the rating under a guessed stock cuts material that is not there.
+  const bool wrong = stock_guessed && energy.spindle_load > 1;
+  if (timed.duration_s > 0) {
+    plausible_peak_w_ = std::max(plausible_peak_w_,
+                                 wrong ? energy.peak_power_without_cutting_w : energy.peak_power_w);
+    guess_.peak_power_floor_w =
+        std::max(guess_.peak_power_floor_w,
+                 stock_guessed ? energy.peak_power_without_cutting_w : energy.peak_power_w);
+  }
+  if (!stock_guessed) return;
+  guess_.guessed = true;
+  if (removed) guess_.removed_mm3 += removed->removed_mm3;
+  guess_.cutting_energy_j += energy.components_j[static_cast<std::size_t>(PowerComponent::Cutting)];
+  if (!wrong) return;
+  if (guess_.first_overload_line < 0 || timed.line != last_overload_line_) ++guess_.overload_blocks;
+  last_overload_line_ = timed.line;
+  if (guess_.first_overload_line < 0) guess_.first_overload_line = timed.line;
+  if (energy.spindle_load > guess_.worst_load) {
+    guess_.worst_load = energy.spindle_load;
+    guess_.worst_overload_line = timed.line;
+  }
+}
+
 void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
                         const CommandRemoval* removed, const CommandEnergy& energy,
-                        std::size_t operation) {
+                        std::size_t operation, bool stock_guessed) {
   const double removed_mm3 = removed ? removed->removed_mm3 : 0.0;
   const bool removal_known = removed != nullptr;
   time_.add(command.kind, timed.duration_s, removed_mm3 > 0, removal_known);
@@ -154,7 +184,7 @@ void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
     b.has_move = true;
   }
   if (!timed.note.empty() && b.note == 0) b.note = note_index(timed.note);
-  if (energy.spindle_load > 1) {
+  if (energy.spindle_load > 1 && !stock_guessed) {
     if (b.spindle_load <= 1) {
       ++overloaded_;
       if (first_overloaded_line_ < 0) first_overloaded_line_ = timed.line;
@@ -227,21 +257,10 @@ void ResultFolder::finish(double total_s) {
   }
   out_.energy.diagnostics.clear();
   if (overloaded_ > 0) {
-    // With a stock guessed from the cuts, the likelier reading is the guess: a program that
-    // rest-machines what earlier operations or programs left cuts less than the full box.
-    const bool guessed =
-        std::any_of(removals_.begin(), removals_.end(), [](const RemovalSimulator* r) {
-          return r->ready() && r->summary().stock_source == StockSource::Guessed;
-        });
     const bool placeholder = power_constants_.placeholder_spindle;
     const char* reading =
         placeholder ? "this profile's rating is a placeholder, so this says only that the cut is "
                       "far beyond what the profile was fitted on "
-        : guessed   ? "the stock is guessed as the full box of the cuts; where earlier "
-                      "operations or programs already cleared material (rest machining), "
-                      "the real cut is lighter: give the stock. With the real stock, a "
-                      "cut still over the rating would stall, or the CAM feeds and speeds "
-                      "are wrong"
                     : "the cut would stall, or the CAM feeds and speeds are wrong";
     char text[520];
     std::snprintf(text, sizeof text,
@@ -252,6 +271,26 @@ void ResultFolder::finish(double total_s) {
     out_.diagnostics.push_back(
         {Severity::Warning, source_.path, first_overloaded_line_ + 1, 0, text});
   }
+  if (guess_.overload_blocks > 0) {
+    // Under a guessed stock the likelier reading is the guess: material the CAM knew was gone
+    // (rest machining, a lead-in from outside the part) is cut there.
+    char text[640];
+    std::snprintf(text, sizeof text,
+                  "the guessed stock is wrong where %zu block(s) would ask the spindle for more "
+                  "than its rated power (the first at line %d, up to %.0f%% of the rating at line "
+                  "%d): the CAM knew the material there was gone (rest machining, a lead-in from "
+                  "outside the part). Their cutting is left out of the peak power (%.0f W with "
+                  "it); give the stock to know the real cut",
+                  guess_.overload_blocks, guess_.first_overload_line + 1, 100 * guess_.worst_load,
+                  guess_.worst_overload_line + 1, out_.energy.peak_power_w);
+    out_.diagnostics.push_back(
+        {Severity::Warning, source_.path, guess_.first_overload_line + 1, 0, text});
+  }
+  if (guess_.guessed) {
+    guess_.peak_power_guess_w = out_.energy.peak_power_w;
+    out_.energy.peak_power_w = plausible_peak_w_;
+  }
+  out_.stock_guess = guess_;
   if (std::any_of(removals_.begin(), removals_.end(),
                   [](const RemovalSimulator* r) { return r->ready(); })) {
     out_.removal = merged_removal();
@@ -264,6 +303,8 @@ void ResultFolder::finish(double total_s) {
     const RemovalResult r = removals_[k]->summary();
     setup_totals_[k].stock = r.stock_description;
     setup_totals_[k].stock_source = r.stock_source;
+    setup_totals_[k].stock_from = r.stock_from;
+    setup_totals_[k].stock_origin = r.stock_origin;
     if (r.stock_source != StockSource::None) setup_totals_[k].stock_box = r.stock_box;
   }
   out_.setups = setup_totals_;

@@ -33,7 +33,10 @@ public:
 private:
   void run_batch();
   void fold(const CanonCommand& command, const TimedCommand& timed, const CommandRemoval* removed,
-            const CommandEnergy& energy, std::size_t operation);
+            const CommandEnergy& energy, std::size_t operation, bool stock_guessed);
+  // What a command under a guessed stock adds to the range of the guessed figures.
+  void follow_guess(const TimedCommand& timed, const CommandRemoval* removed,
+                    const CommandEnergy& energy, bool stock_guessed);
   void follow_path(const CanonCommand& command, const TimedCommand& timed,
                    const std::vector<OperatingSegment>& segments);
   std::uint16_t note_index(const std::string& note);
@@ -68,7 +71,11 @@ private:
   SeriesReducer power_, mrr_;
   PathReducer path_;
   std::map<std::string, std::uint16_t> notes_;
-  // Blocks that ask the spindle for more than its rating.
+  std::vector<bool> guessed_setups_; // whose stock is guessed, by setup
+  StockGuessRange guess_;
+  int last_overload_line_ = -1;
+  double plausible_peak_w_ = 0; // the peak, less the cutting of blocks over the rating under a guess
+  // Blocks that ask the spindle for more than its rating (with a stock given or stated).
   std::size_t overloaded_ = 0;
   int first_overloaded_line_ = -1;
   double worst_load_ = 0;

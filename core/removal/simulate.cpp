@@ -160,21 +160,23 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
     break;
   }
   case StockSpec::Kind::Default: {
-    const auto box = extent.box(tools_);
-    if (!box || box->empty()) {
-      const char* why = !box ? "the program has no cutting move with a known tool"
-                             : "every cutting move is at one Z level";
+    const std::optional<StockGuess> guess =
+        guess_stock(extent.tool_cuts(tools_), options.program_inch,
+                    options.first_setup_stock ? &*options.first_setup_stock : nullptr);
+    if (!guess || guess->box.empty()) {
+      const char* why = !guess ? "the program has no cutting move with a known tool"
+                               : "its cuts have no extent to guess a stock from";
       diag(Severity::Warning, 0,
            std::string("no stock given and ") + why +
                ": nothing is removed (give a stock box or STL)");
       totals_.stock_description = "none (no stock given, and " + std::string(why) + ")";
       return;
     }
-    stock_ = make_box_stock(
-        *box, format_box(*box) +
-                  " (guessed, no stock given: bounding box of the cutting moves, XY widened "
-                  "by the tool radius, Z from the lowest cut up to the "
-                  "highest level at which a cutting move travels in XY)");
+    std::string rules;
+    for (const std::string& rule : guess->rules)
+      rules += "; " + rule;
+    stock_ = make_box_stock(guess->box,
+                            format_box(guess->box) + " (guessed, no stock given" + rules + ")");
     break;
   }
   }
@@ -182,6 +184,8 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
   totals_.stock_source = spec.kind == StockSpec::Kind::Default ? StockSource::Guessed
                          : spec.stated_by_program              ? StockSource::Program
                                                                : StockSource::Given;
+  totals_.stock_from = spec.kind == StockSpec::Kind::Default ? "guess" : spec.from;
+  totals_.stock_origin = spec.origin;
   totals_.stock_box = stock_->bounds();
   if (options.mirror_z)
     totals_.stock_box.zmin = -stock_->bounds().zmax,

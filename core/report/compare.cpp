@@ -50,6 +50,8 @@ ProgramTotals program_totals(const Estimate& e) {
         return s.stock_source == StockSource::Guessed || s.stock_source == StockSource::None;
       });
   t.volumes_known = e.removal.has_value() && e.unsimulated_tools.empty();
+  t.guess = guessed_figures(e);
+  t.peak_power_w = e.energy.peak_power_w;
   return t;
 }
 
@@ -81,6 +83,21 @@ std::vector<std::string> comparison_warnings(const std::vector<RankedProgram>& r
     out.push_back("the stock of " + guessed +
                   " is guessed from its own cutting moves: give the job's stock (--stock or a job "
                   "file) so that every alternative cuts the same one");
+  // Each guessed program's figures marked '*' in the table: the range they can span.
+  for (const RankedProgram& r : ranked) {
+    const GuessedFigures& g = r.totals.guess;
+    if (!g.guessed) continue;
+    const double unit = r.totals.inch ? kMm3PerIn3 : 1.0;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "%s*: on a guessed stock its energy can be %.2f to %.2f kJ, its volume %.*f to "
+                  "%.*f %s and its peak %.0f to %.0f W (from no cut to the guess)",
+                  std::filesystem::path(r.totals.file).filename().string().c_str(),
+                  g.energy_j.low / 1000, g.energy_j.high / 1000, r.totals.inch ? 3 : 0,
+                  g.removed_mm3.low / unit, r.totals.inch ? 3 : 0, g.removed_mm3.high / unit,
+                  r.totals.inch ? "in^3" : "mm^3", g.peak_power_w.low, g.peak_power_w.high);
+    out.push_back(text);
+  }
   std::string setup_counts;
   for (const RankedProgram& r : ranked)
     if (r.totals.setups != ranked.front().totals.setups) setup_counts = "differ";
@@ -241,6 +258,17 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
     p["machine_cost"] = t.machine_cost;
     p["currency"] = t.currency;
     p["components"] = components_json(t.components_j);
+    p["peak_power_w"] = t.peak_power_w;
+    if (t.guess.guessed) {
+      auto range = [](const GuessedFigures::Range& x) { return Json::array({x.low, x.high}); };
+      p["stock_guess"] = Json{{"removed_mm3", range(t.guess.removed_mm3)},
+                              {"energy_j", range(t.guess.energy_j)},
+                              {"peak_power_w", range(t.guess.peak_power_w)},
+                              {"co2_kg", range(t.guess.co2_kg)},
+                              {"cost", range(t.guess.cost)}};
+    } else {
+      p["stock_guess"] = nullptr;
+    }
     p["why"] = explain_difference(r);
     p["why_by_operation"] = explain_by_operation(r, ranked.front(), by);
     p["vs_best"] = Json{{"time_s", r.time_diff_s},

@@ -29,6 +29,26 @@ void quoted(std::string& out, std::string_view text) {
   out.push_back('"');
 }
 
+// Where the stock a line cuts came from (the setup it is in): "given", "program", "guessed" or
+// "none"; a guessed one makes its volume, MRR, cutting power and energy guesses too.
+const char* stock_of_line(const Estimate& e, int line) {
+  if (!e.removal) return "none";
+  const SetupSummary* setup = nullptr;
+  for (const SetupSummary& s : e.setups)
+    if (s.first_line <= line || !setup) setup = &s;
+  switch (setup ? setup->stock_source : StockSource::None) {
+  case StockSource::Given:
+    return "given";
+  case StockSource::Program:
+    return "program";
+  case StockSource::Guessed:
+    return "guessed";
+  case StockSource::None:
+    break;
+  }
+  return "none";
+}
+
 void row(std::string& out, const LineSummary& b, const Estimate& e) {
   number(out, b.line + 1);
   out.push_back(',');
@@ -62,6 +82,8 @@ void row(std::string& out, const LineSummary& b, const Estimate& e) {
     out.push_back(',');
     number(out, v);
   }
+  out.push_back(',');
+  out.append(stock_of_line(e, b.line));
   out.push_back('\n');
 }
 
@@ -73,7 +95,7 @@ void write_estimate_csv(std::ostream& out, const Estimate& e) {
                        "mrr_peak_mm3_s,power_w,power_peak_w,energy_j";
   for (std::size_t i = 0; i < kPowerComponentCount; ++i)
     buffer += ',' + std::string(component_name(PowerComponent(i))) + "_j";
-  buffer += '\n';
+  buffer += ",stock\n";
   // Written in large pieces: a stream write per field is slow.
   for (const LineSummary& b : e.lines) {
     row(buffer, b, e);

@@ -54,17 +54,30 @@ std::vector<BarSegment> component_segments(const ComponentValues& values) {
 
 std::string kpi_cards(const Estimate& e) {
   const EnergyResult& en = e.energy;
+  // On a guessed stock, the figures it sets carry a "guessed" badge and their range.
+  const GuessedFigures g = guessed_figures(e);
+  const std::string badge = g.guessed ? " <span class=\"guessed\" title=\"on a guessed stock: "
+                                        "give the stock to know it\">guessed</span>"
+                                      : "";
+  auto range = [&](const GuessedFigures::Range& r, double scale, int decimals,
+                   const std::string& unit) {
+    return "<br>guessed stock: " + format_number(r.low * scale, decimals) + " to " +
+           format_number(r.high * scale, decimals) + " " + unit;
+  };
   std::string html = "<div class=\"kpis\">";
   html += kpi("Time", duration_text(e.time_s), format_number(e.time_s, 1) + " s");
-  html += kpi("Energy", format_number(en.energy_j / 3.6e6, 4) + " kWh",
-              format_number(en.energy_j / 1000, 1) + " kJ");
-  html += kpi("Removed", format_number(en.removed_mm3, 0) + " mm&sup3;",
-              "SEC " + format_number(en.sec_j_mm3, 2) + " J/mm&sup3;");
-  html += kpi("Power", format_number(en.mean_power_w, 0) + " W",
-              "mean; peak " + format_number(en.peak_power_w, 0) + " W");
-  html += kpi("CO&#8322;", format_number(en.co2_kg * 1000, 1) + " g",
+  html += kpi("Energy" + badge, format_number(en.energy_j / 3.6e6, 4) + " kWh",
+              format_number(en.energy_j / 1000, 1) + " kJ" +
+                  (g.guessed ? range(g.energy_j, 1 / 3.6e6, 4, "kWh") : ""));
+  html += kpi("Removed" + badge, format_number(en.removed_mm3, 0) + " mm&sup3;",
+              "SEC " + format_number(en.sec_j_mm3, 2) + " J/mm&sup3;" +
+                  (g.guessed ? range(g.removed_mm3, 1, 0, "mm&sup3;") : ""));
+  html += kpi("Power" + badge, format_number(en.mean_power_w, 0) + " W",
+              "mean; peak " + format_number(en.peak_power_w, 0) + " W" +
+                  (g.guessed ? range(g.peak_power_w, 1, 0, "W peak") : ""));
+  html += kpi("CO&#8322;" + badge, format_number(en.co2_kg * 1000, 1) + " g",
               format_number(en.co2_kg, 4) + " kg");
-  html += kpi("Cost", format_number(en.cost, 4) + " " + html_escaped(en.currency),
+  html += kpi("Cost" + badge, format_number(en.cost, 4) + " " + html_escaped(en.currency),
               "at the profile's price");
   return html + "</div>";
 }

@@ -25,6 +25,7 @@ h3{font-size:14px;margin:18px 0 6px;color:#334155;font-weight:600}
 .kpi .label{font-size:11px;text-transform:uppercase;letter-spacing:.6px;color:var(--muted)}
 .kpi .value{font-size:20px;font-weight:600;margin-top:2px;font-variant-numeric:tabular-nums}
 .kpi .extra{font-size:12px;color:var(--muted);font-variant-numeric:tabular-nums}
+.kpi .guessed{background:#fff3cd;color:#7a5b00;border-radius:4px;padding:0 4px;text-transform:none;letter-spacing:0}
 figure.chart{margin:10px 0 14px;position:relative}
 figure.chart figcaption{font-weight:600;font-size:14px;color:#334155;margin-bottom:4px}
 figure.chart svg{width:100%;height:auto;display:block}

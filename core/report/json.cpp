@@ -121,6 +121,40 @@ void write_operation(JsonWriter& w, const OperationSummary& op, bool removal_kno
   w.end_object();
 }
 
+// The figures a guessed stock sets, each as [low, high]: from no cut in the guessed setups to
+// the guess; null when every stock is known.
+void write_stock_guess(JsonWriter& w, const Estimate& e) {
+  w.key("stock_guess");
+  const GuessedFigures g = guessed_figures(e);
+  if (!g.guessed) {
+    w.null();
+    return;
+  }
+  w.begin_object();
+  const std::pair<const char*, GuessedFigures::Range> ranges[] = {{"removed_mm3", g.removed_mm3},
+                                                                  {"energy_j", g.energy_j},
+                                                                  {"peak_power_w", g.peak_power_w},
+                                                                  {"co2_kg", g.co2_kg},
+                                                                  {"cost", g.cost}};
+  for (const auto& [name, range] : ranges) {
+    w.key(name);
+    w.begin_array();
+    w.value(range.low);
+    w.value(range.high);
+    w.end_array();
+  }
+  w.field("peak_power_with_overloads_w", g.peak_with_overloads_w);
+  const StockGuessRange& r = e.stock_guess;
+  w.key("overloads");
+  w.begin_object();
+  w.field("blocks", r.overload_blocks);
+  w.field("first_line", r.first_overload_line + 1);
+  w.field("worst_line", r.worst_overload_line + 1);
+  w.field("worst_load", r.worst_load);
+  w.end_object();
+  w.end_object();
+}
+
 } // namespace
 
 void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProfile& machine,
@@ -145,6 +179,10 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
   write_time_split(w, e.time, removal != nullptr);
   w.field("removed_mm3", energy.removed_mm3);
   w.field("stock", removal ? removal->stock_description : std::string("not simulated"));
+  // Where the (first setup's) stock came from: docs/stock.md lists the kinds.
+  w.field("stock_from", e.setups.empty() || e.setups.front().stock_from.empty()
+                            ? std::string("none")
+                            : e.setups.front().stock_from);
   if (removal) {
     w.key("removal");
     w.begin_object();
@@ -168,6 +206,8 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
     w.field("removed_mm3", setup.removed_mm3);
     w.field("stock", setup.stock.empty() ? std::string("not simulated") : setup.stock);
     w.field("stock_source", stock_source_name(setup.stock_source));
+    w.field("stock_from", setup.stock_from.empty() ? std::string("none") : setup.stock_from);
+    if (!setup.stock_origin.empty()) w.field("stock_origin", setup.stock_origin);
     if (setup.stock_box) {
       const Box3& b = *setup.stock_box;
       w.key("stock_box_mm");
@@ -208,6 +248,7 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
   w.field("machine_rate_per_hour", energy.machine_rate_per_hour);
   w.field("currency", energy.currency);
   write_components(w, energy.components_j);
+  write_stock_guess(w, e);
   w.key("operations");
   w.begin_array();
   for (const OperationSummary& op : e.operations)

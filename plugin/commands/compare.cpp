@@ -73,7 +73,10 @@ std::string diff_text(double diff, double pct, const char* unit, int decimals) {
 
 void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
                  RankBy by) {
-  const std::vector<std::string> names = labels_of(ranked);
+  // A program whose figures rest on a guessed stock is marked '*' (its range is in the warnings).
+  std::vector<std::string> names = labels_of(ranked);
+  for (std::size_t i = 0; i < ranked.size(); ++i)
+    if (ranked[i].totals.guess.guessed) names[i] += '*';
   std::size_t width = 7;
   for (const std::string& name : names)
     width = std::max(width, name.size());

@@ -65,25 +65,42 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
   std::printf("  dwell       %s\n", clock_text(t.dwell_s).c_str());
   std::printf("  spindle     %s (speed changes)\n", clock_text(t.spindle_s).c_str());
   if (t.other_s > 0) std::printf("  other       %s\n", clock_text(t.other_s).c_str());
-  std::printf("  energy      %.4f kWh (%.1f kJ), mean power %.0f W, peak %.0f W\n",
-              energy.energy_j / 3.6e6, energy.energy_j / 1000, energy.mean_power_w,
-              energy.peak_power_w);
+  // Figures a guessed stock sets are marked '*' and their range said below them.
+  const GuessedFigures guess = guessed_figures(e);
+  const char* mark = guess.guessed ? "*" : "";
+  std::printf("  energy      %.4f kWh%s (%.1f kJ), mean power %.0f W%s, peak %.0f W%s\n",
+              energy.energy_j / 3.6e6, mark, energy.energy_j / 1000, energy.mean_power_w, mark,
+              energy.peak_power_w, mark);
   if (e.inch) // an inch program's programmer reads in^3 and in^3/min; mm^3 follow for checking
-    std::printf("  removed     %.3f in^3 (%.0f mm^3), mean MRR %.3f in^3/min, SEC %.1f J/in^3 "
-                "(%.2f J/mm^3)\n",
-                energy.removed_mm3 / kMm3PerIn3, energy.removed_mm3,
-                e.time_s > 0 ? energy.removed_mm3 / kMm3PerIn3 / (e.time_s / 60) : 0.0,
-                energy.sec_j_mm3 * kMm3PerIn3, energy.sec_j_mm3);
+    std::printf("  removed     %.3f in^3%s (%.0f mm^3), mean MRR %.3f in^3/min%s, SEC %.1f "
+                "J/in^3%s (%.2f J/mm^3)\n",
+                energy.removed_mm3 / kMm3PerIn3, mark, energy.removed_mm3,
+                e.time_s > 0 ? energy.removed_mm3 / kMm3PerIn3 / (e.time_s / 60) : 0.0, mark,
+                energy.sec_j_mm3 * kMm3PerIn3, mark, energy.sec_j_mm3);
   else
-    std::printf("  removed     %.0f mm^3, SEC %.2f J/mm^3\n", energy.removed_mm3, energy.sec_j_mm3);
+    std::printf("  removed     %.0f mm^3%s, SEC %.2f J/mm^3%s\n", energy.removed_mm3, mark,
+                energy.sec_j_mm3, mark);
   if (energy.machine_cost > 0)
-    std::printf("  CO2         %.4f kg, cost %.2f %s (machine time %.2f at %g/h, electricity "
+    std::printf("  CO2         %.4f kg%s, cost %.2f %s%s (machine time %.2f at %g/h, electricity "
                 "%.4f)\n",
-                energy.co2_kg, energy.cost, energy.currency.c_str(), energy.machine_cost,
-                energy.machine_rate_per_hour, energy.electricity_cost);
+                energy.co2_kg, mark, energy.cost, energy.currency.c_str(), mark,
+                energy.machine_cost, energy.machine_rate_per_hour, energy.electricity_cost);
   else
-    std::printf("  CO2         %.4f kg, cost %.4f %s\n", energy.co2_kg, energy.cost,
-                energy.currency.c_str());
+    std::printf("  CO2         %.4f kg%s, cost %.4f %s%s\n", energy.co2_kg, mark, energy.cost,
+                energy.currency.c_str(), mark);
+  if (guess.guessed) {
+    const double volume_scale = e.inch ? 1 / kMm3PerIn3 : 1.0;
+    const char* volume_unit = e.inch ? "in^3" : "mm^3";
+    const int decimals = e.inch ? 3 : 0;
+    std::printf("  * on a guessed stock (nothing states it; how it was guessed is under stock "
+                "below): energy %.4f to %.4f kWh, removed %.*f to %.*f %s, peak %.0f to %.0f W, "
+                "from no cut to the guess. Give the stock (--stock, a job file, PROGRAM.stock) "
+                "to know them\n",
+                guess.energy_j.low / 3.6e6, guess.energy_j.high / 3.6e6, decimals,
+                guess.removed_mm3.low * volume_scale, decimals,
+                guess.removed_mm3.high * volume_scale, volume_unit, guess.peak_power_w.low,
+                guess.peak_power_w.high);
+  }
   for (std::size_t i = 0; i < kPowerComponentCount; ++i) {
     if (energy.components_j[i] == 0) continue;
     std::printf("    %-12s %10.1f kJ (%.1f%%)\n",
@@ -94,6 +111,14 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
 }
 
 // Time, air cutting, volume and energy per operation.
+// Where a setup's stock came from: its kind (docs/stock.md) and where it is written.
+void print_stock_from(const SetupSummary& s) {
+  if (s.stock_from.empty() || s.stock_from == "none") return;
+  std::printf("              from %s%s%s%s\n", s.stock_from.c_str(),
+              s.stock_origin.empty() ? "" : " (", s.stock_origin.c_str(),
+              s.stock_origin.empty() ? "" : ")");
+}
+
 void print_operations(const Estimate& e) {
   const std::vector<OperationSummary>& ops = e.operations;
   if (ops.empty()) return;
@@ -152,6 +177,7 @@ int run_estimate(const EstimateCliOptions& o) {
           e.setups.size() > 1 ? "one per setup (below)" : e.removal->stock_description.c_str(),
           std::string(engine_name(e.removal->engine)).c_str(), e.removal->grid.dx,
           e.removal->grid.columns(), double(e.removal->memory_bytes) / (1 << 20));
+    if (e.removal && e.setups.size() == 1) print_stock_from(e.setups.front());
     if (e.setups.size() > 1)
       for (std::size_t k = 0; k < e.setups.size(); ++k) {
         const SetupSummary& s = e.setups[k];
@@ -159,6 +185,7 @@ int run_estimate(const EstimateCliOptions& o) {
                     s.first_line + 1, s.reason.c_str(), s.time_s, s.energy_j / 1e3, e.inch ? 3 : 0,
                     e.inch ? s.removed_mm3 / kMm3PerIn3 : s.removed_mm3, e.inch ? "in^3" : "mm^3");
         if (!s.stock.empty()) std::printf("              stock %s\n", s.stock.c_str());
+        if (e.removal) print_stock_from(s);
       }
     print_operations(e);
     if (!e.unsimulated_tools.empty()) {

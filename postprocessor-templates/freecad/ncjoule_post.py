@@ -89,17 +89,51 @@ def _stock_box_mm(values):
 
 
 def _job_stock(objectslist):
-    """box:... of the job's stock, when the objects belong to a job that has one."""
+    """The stock of the job the objects belong to: (box:... , None) when it is a box along the
+    axes (CreateBox, ExtendedBoundBox), (None, its shape) when it is not (a cylinder, a solid):
+    that one goes to ncjoule as an STL, its bounding box would hold material it has not.
+    (None, None) without a job or a stock."""
     try:
         import PathScripts.PathUtils as PathUtils
         for obj in objectslist:
             job = PathUtils.findParentJob(obj)
             if job is not None and getattr(job, "Stock", None) is not None:
-                b = job.Stock.Shape.BoundBox
-                return _stock_box_mm((b.XMin, b.YMin, b.ZMin, b.XMax, b.YMax, b.ZMax))
+                shape = job.Stock.Shape
+                b = shape.BoundBox
+                box = b.XLength * b.YLength * b.ZLength
+                if box > 0 and abs(shape.Volume - box) <= 1e-6 * box:
+                    return _stock_box_mm((b.XMin, b.YMin, b.ZMin, b.XMax, b.YMax, b.ZMax)), None
+                return None, shape
     except Exception:
         pass
-    return None
+    return None, None
+
+
+def _program_in_inches(gcode):
+    """Whether the G-code selects inches (G20) before any G21, comments left out."""
+    import re
+    code = re.sub(r"\([^)]*\)|;[^\n]*", "", gcode or "")
+    found = re.search(r"(?<![0-9.])G0*2([01])(?![0-9.])", code, re.IGNORECASE)
+    return found is not None and found.group(1) == "0"
+
+
+def _stock_stl(shape, folder, inch):
+    """The stock's shape as an STL in `folder`, in the program's units (ncjoule reads an STL in
+    the program's units); None when it cannot be meshed."""
+    try:
+        import FreeCAD
+        import MeshPart
+        mesh = MeshPart.meshFromShape(Shape=shape, LinearDeflection=0.01, AngularDeflection=0.05)
+        if inch:
+            scale = FreeCAD.Matrix()
+            scale.scale(1 / 25.4, 1 / 25.4, 1 / 25.4)
+            mesh.transform(scale)
+        path = os.path.join(folder, "stock.stl")
+        mesh.write(path)
+        return path
+    except Exception as e:  # a shape FreeCAD cannot mesh
+        _warn("the job's stock could not be written as an STL (%s); ncjoule is given none" % e)
+        return None
 
 
 # FreeCAD tool bit shapes (ShapeName, or the file name of the bit's shape) and the tool types of
@@ -191,7 +225,17 @@ class _Settings:
         self.post = known.post or os.environ.get("NCJOULE_POST") or "linuxcnc"
         self.machine = known.machine or os.environ.get("NCJOULE_MACHINE") or ""
         self.program = known.ncjoule or os.environ.get("NCJOULE") or "ncjoule"
-        self.stock = known.stock or os.environ.get("NCJOULE_STOCK") or _job_stock(objectslist)
+        self.stock = known.stock or os.environ.get("NCJOULE_STOCK") or ""
+        # The job's own stock is named as the hook's (ncjoule --stock-from, docs/stock.md): a
+        # box as its box in mm, another shape as an STL written when the program's units are
+        # known (stock_for).
+        self.stock_from = ""
+        self.stock_shape = None
+        self.scratch = None
+        if not self.stock:
+            box, self.stock_shape = _job_stock(objectslist)
+            self.stock = box or ""
+            self.stock_from = "freecad" if box or self.stock_shape is not None else ""
         self.tools = _job_tools(objectslist)
         self.extra = _extra_arguments(known.ncjoule_args or os.environ.get("NCJOULE_ARGS", ""))
         self.enabled = not known.no_ncjoule and os.environ.get("NCJOULE_DISABLE", "") not in (
@@ -206,6 +250,20 @@ class _Settings:
             return "%s is not on the PATH (--ncjoule PATH)" % self.program
         return None
 
+    def stock_for(self, gcode):
+        """Writes the job's non-box stock as an STL in the program's units, for command()."""
+        if self.stock_shape is None or self.stock:
+            return
+        self.scratch = tempfile.mkdtemp(prefix="ncjoule-stock-")
+        self.stock = _stock_stl(self.stock_shape, self.scratch, _program_in_inches(gcode)) or ""
+        if not self.stock:
+            self.stock_from = ""
+
+    def cleanup(self):
+        if self.scratch:
+            shutil.rmtree(self.scratch, ignore_errors=True)
+            self.scratch = None
+
     def command(self, source, in_place=False):
         """ncjoule annotate for `source` (a file, or "-" for standard input), every value one
         argument, and the file after "--": a file named like an option ("-x.nc") stays a file."""
@@ -213,6 +271,8 @@ class _Settings:
         cmd = [self.program, "annotate"] + (["--machine=" + self.machine] if self.machine else [])
         if self.stock:
             cmd.append("--stock=" + self.stock)
+        if self.stock_from:
+            cmd.append("--stock-from=" + self.stock_from)
         if in_place:
             cmd.append("--in-place")
         return cmd + self.tools + self.extra + ["--", source]
@@ -269,7 +329,12 @@ def export(objectslist, filename, argstring):
         if not os.path.isfile(filename):
             _warn("the %s post wrote no %s; nothing to annotate" % (settings.post, filename))
             return result
-        status, _, err = _run(settings.command(filename, in_place=True))
+        try:
+            with open(filename, encoding="utf-8", errors="surrogateescape") as f:
+                settings.stock_for(f.read())
+            status, _, err = _run(settings.command(filename, in_place=True))
+        finally:
+            settings.cleanup()
         done = _in_place_outcome(status, err, filename)
         if done is None:
             _warn("%s; %s is as the %s post wrote it" % (_why(status, err), filename, settings.post))
@@ -302,7 +367,11 @@ def export(objectslist, filename, argstring):
     if problem:
         _warn("%s; the program is not annotated" % problem)
         return gcode
-    status, annotated, err = _run(settings.command("-"), gcode)
+    try:
+        settings.stock_for(gcode)
+        status, annotated, err = _run(settings.command("-"), gcode)
+    finally:
+        settings.cleanup()
     if status != 0:
         _warn("%s; the program is as the %s post made it" % (_why(status, err), settings.post))
         return gcode

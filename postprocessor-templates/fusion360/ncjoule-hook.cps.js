@@ -2,7 +2,7 @@
   ncjoule hook for Autodesk post processors (Fusion, Inventor CAM, HSM): append this whole file
   to the end of a vendor .cps post. After the post has written its program(s), the hook runs
 
-      ncjoule annotate [--machine=<profile>] --in-place --stock=<the post's workpiece> [<extra arguments>] -- <file>
+      ncjoule annotate [--machine=<profile>] --in-place --stock=<the post's workpiece> --stock-from=fusion360 [<extra arguments>] -- <file>
 
   on every NC file the post wrote, so each block carries its predicted time, MRR, power and
   energy as a comment. See README.md next to this file.
@@ -496,9 +496,12 @@ function ncjouleWorkpieceStock() {
 // Annotates one file in place; true when it was annotated. Never throws.
 function ncjouleAnnotateFile(program, profile, file) {
   var words = ["annotate"].concat(profile ? ["--machine=" + profile] : [], ["--in-place"]);
-  var stock = String(ncjouleProperty("ncjouleStock") || "") || ncjouleWorkpieceStock();
+  // The user's own stock setting, else the setup's workpiece, named as the hook's (docs/stock.md).
+  var stock = String(ncjouleProperty("ncjouleStock") || "");
   if (stock) {
     words.push("--stock=" + stock);
+  } else if ((stock = ncjouleWorkpieceStock())) {
+    words.push("--stock=" + stock, "--stock-from=fusion360");
   }
   // "--" before the file: a file named like an option stays a file.
   words = words.concat(ncjouleExtraArguments(), ["--", file]);

@@ -40,9 +40,9 @@ std::string stock_lines(const std::string& annotated_text) {
 TEST_CASE("a stock guessed from the cuts is said to be, with its box") {
   const std::string lines = stock_lines(annotate_with_removal(pocket_program(""), {}));
   CAPTURE(lines);
-  // The box: the pocket's passes widened by the tool radius, from the lower pass up to the upper
-  // (the first level a cut travels at is taken as the top).
-  CHECK(lines.find("BOX_MM=0,0,-3,40,20,-1.5") != std::string::npos);
+  // The box: the extent of the passes (they go round an area 34 x 14 mm, 2.3 tool diameters
+  // wide: an area, not a line), from the lower pass up to Z0 (every cut runs below it).
+  CHECK(lines.find("BOX_MM=3,3,-3,37,17,0") != std::string::npos);
   CHECK(lines.find("GUESSED FROM CUTS") != std::string::npos);
   CHECK(lines.find("NCJ SETUP") == std::string::npos); // one setup: no setup lines
 }

@@ -137,18 +137,18 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run(bare, "--stock", box, "--tool", "1:flat:6", "--tool", "2:ball:6", "--json")
     check(r.returncode == 0, f"both tools on the command line ({r.stderr[:200]!r})")
 
-    # Default stock with feed plunges from Z5: the top is the highest level a cut runs at
-    # (Z-2), so the plunges through air do not make a 7 mm stock. The second pass at Z-4 cuts
-    # the 2 mm below it: a 6 mm slot's volume.
+    # Default stock with feed plunges from Z5: every cut runs below Z0, so Z0 is the top (a post
+    # puts Z0 on the stock's top), and the plunges through air do not make a 9 mm stock. The two
+    # passes cut the slot 4 mm deep: twice a 2 mm slot's volume.
     deep = os.path.join(tmp, "deep.ngc")
     with open(deep, "w") as f:
         f.write(SLOT.replace("G0 Z5\nM30", "G1 Z-4 F200\nG1 X0 F600\nG0 Z5\nM30"))
     r = run(deep, "--json", "--grid", "0.1")
     doc = json.loads(r.stdout) if r.returncode == 0 else {}
-    check("travels in XY" in doc.get("stock", ""), f"default stock rule stated ({doc.get('stock')})")
+    check("top: Z0" in doc.get("stock", ""), f"default stock rule stated ({doc.get('stock')})")
     v = doc.get("removed_mm3")
-    check(v is not None and abs(v - slot_volume(6)) < 3e-3 * slot_volume(6),
-          f"default stock: top at the upper level, not the clearance plane (got {v})")
+    check(v is not None and abs(v - 2 * slot_volume(6)) < 3e-3 * slot_volume(6),
+          f"default stock: top at Z0, not the clearance plane (got {v})")
     check("collision" not in r.stderr, "no collision reported")
 
     # +Z into the work: the slot posted with every Z negated, on a profile that says so, cuts

@@ -37,11 +37,15 @@ TEST_CASE("without work offsets, G53 Z0 and G91 G28 Z0 go up to Z home, not down
     CHECK_FALSE(warned(e, "collision"));
     CHECK_FALSE(mentioned(e, "a CAM rapids through air"));
     CHECK_FALSE(warned(e, "rated power"));
-    // The default stock: the two passes' level at Z-1 is its top and bottom; the positioning at
+    // The default stock: its top at Z0, its bottom the passes' level Z-1; the positioning at
     // F5000 and the moves from Z home neither raise it (a stock up to Z home or Z5 would make
-    // the face mill cut 6 mm deep at 5000 mm/min) nor cut.
-    CHECK(e.energy.removed_mm3 == 0);
-    CHECK(warned(e, "every cutting move is at one Z level"));
+    // the face mill cut 6 mm deep at 5000 mm/min) nor cut. The passes clear the area between
+    // them (their path's extent, Y0 to Y30): each cuts the half of its 20 mm width inside it,
+    // 1 mm deep over X-20 to X100.
+    REQUIRE(e.removal);
+    CHECK(e.removal->stock_box.zmax == 0);
+    CHECK(e.removal->stock_box.zmin == -1);
+    CHECK(e.energy.removed_mm3 == doctest::Approx(2 * 120 * 10 * 1).epsilon(0.02));
   }
 }
 

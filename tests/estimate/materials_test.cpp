@@ -141,7 +141,8 @@ TEST_CASE("a cut asking the spindle for more than its rating is flagged on its b
   CHECK(warned(e, "the CAM feeds and speeds are wrong"));
   CHECK_FALSE(warned(e, "the stock is guessed"));
   // Without a stock, the box of the cuts is a guess, and a guess that overloads the spindle is
-  // the likelier thing to be wrong (rest machining): the warning says so first.
+  // the likelier thing to be wrong (rest machining): the block is listed as a place where the
+  // guess is wrong, and its cutting is left out of the peak power.
   EstimateOptions no_stock;
   no_stock.material = "mild-steel";
   const Estimate guessed = estimate_program(
@@ -151,8 +152,22 @@ TEST_CASE("a cut asking the spindle for more than its rating is flagged on its b
       small, no_stock);
   REQUIRE(guessed.removal);
   CHECK(guessed.energy.removed_mm3 > 1000); // the second pass: 70 x 6 x 3 mm, less its ends
-  CHECK(warned(guessed, "more than its rated power"));
-  CHECK(warned(guessed, "the stock is guessed as the full box of the cuts"));
+  CHECK(warned(guessed, "the guessed stock is wrong where 1 block(s) would ask the spindle for "
+                        "more than its rated power (the first at line 11"));
+  CHECK_FALSE(warned(guessed, "the CAM feeds and speeds are wrong"));
+  const StockGuessRange& range = guessed.stock_guess;
+  CHECK(range.guessed);
+  CHECK(range.overload_blocks == 1);
+  CHECK(range.first_overload_line == 10); // 0-based: the pass at Z-3
+  CHECK(range.worst_load > 1);
+  // The peak printed is the machine's without that cut; the guess's own is kept beside it.
+  CHECK(guessed.energy.peak_power_w < range.peak_power_guess_w);
+  CHECK(guessed.energy.peak_power_w == doctest::Approx(range.peak_power_floor_w));
+  const GuessedFigures figures = guessed_figures(guessed);
+  CHECK(figures.removed_mm3.low == 0);
+  CHECK(figures.removed_mm3.high == guessed.energy.removed_mm3);
+  CHECK(figures.energy_j.high - figures.energy_j.low ==
+        doctest::Approx(guessed.energy.components_j[std::size_t(PowerComponent::Cutting)]));
   bool flagged = false;
   for (const LineSummary& b : e.lines)
     flagged |= b.line == 6 && b.spindle_load > 1;

@@ -44,10 +44,9 @@ TEST_CASE("a stop, then another work offset, starts a second setup with its own 
   REQUIRE(e.setups.size() == 2);
   CHECK(e.setups[1].reason.find("M0") != std::string::npos);
   CHECK(e.setups[1].reason.find("G55") != std::string::npos);
-  // Each side removes its pocket below the default stock's top, the first pass's level (-1.5):
-  // 40 x 19.5 (the passes' reach) x 1.5 = 1170 mm^3 less the corners a round tool leaves.
-  CHECK(e.setups[0].removed_mm3 > 1100);
-  CHECK(e.setups[0].removed_mm3 < 1170);
+  // Each side removes its guessed stock: the top at Z0, the outline the passes' extent (X3 to
+  // X37, Y3 to Y16.5: an area's passes run to the stock's edge), 3 mm deep: 1377 mm^3.
+  CHECK(e.setups[0].removed_mm3 == doctest::Approx(34 * 13.5 * 3).epsilon(1e-3));
   CHECK(e.setups[1].removed_mm3 == doctest::Approx(e.setups[0].removed_mm3).epsilon(0.01));
   CHECK(e.energy.removed_mm3 ==
         doctest::Approx(e.setups[0].removed_mm3 + e.setups[1].removed_mm3).epsilon(1e-6));

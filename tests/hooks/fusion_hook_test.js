@@ -140,6 +140,7 @@ test("without a stock property the setup's workpiece is the stock, with the prog
   assert.deepStrictEqual(ctx.record.warnings, []);
   const argv = ctx.record.executed[0][2];
   assert.ok(argv.includes("--stock=box:-0.25in,0in,-1in,3.75in,3in,0in"), argv.join(" "));
+  assert.ok(argv.includes("--stock-from=fusion360"), argv.join(" "));
   // The same workpiece in a metric post, and an empty workpiece (none set) gives no --stock.
   engine.unit = 0;
   ctx.record.executed.length = 0;
@@ -151,6 +152,52 @@ test("without a stock property the setup's workpiece is the stock, with the prog
   fs.copyFileSync(PROGRAM_A, out);
   ctx.onTerminate();
   assert.ok(!ctx.record.executed[0][2].some((a) => a.startsWith("--stock")));
+});
+
+// The engine's workpiece through the real ncjoule: the annotated header's stock is the
+// workpiece, in the program's units, named as the hook's.
+function postWithWorkpiece(out, inch, workpiece) {
+  const engine = makeEngine(out, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE, ncjouleStock: ""});
+  engine.readText = (p) => fs.readFileSync(p, "latin1");
+  engine.IN = 1;
+  engine.MM = 0;
+  engine.unit = inch ? 1 : 0;
+  engine.getWorkpiece = () => workpiece;
+  const ctx = vm.createContext(engine);
+  vm.runInContext(withReader(MODERN_POST) + "\n" + HOOK, ctx, {filename: "modern.cps"});
+  ctx.onOpen();
+  ctx.onClose();
+  ctx.onTerminate();
+  assert.deepStrictEqual(ctx.record.warnings, []);
+  return fs.readFileSync(out, "latin1");
+}
+
+test("the workpiece reaches ncjoule as the stock, named hook-fusion360, in inch and mm programs", () => {
+  const dir = tempDir();
+  // An inch program (a Fusion-style header) and the workpiece 4 x 3 x 1 in around its cuts.
+  const inch = path.join(dir, "1003.ngc");
+  fs.writeFileSync(inch, "%\nO1003 (POCKET)\n(T1 D=0.25 CR=0. - FLAT END MILL)\nN10 G90 G94 G17\n" +
+    "N15 G20\nN20 T1 M6\nN25 S10000 M3\nN30 G54\nN35 G0 X0.5 Y0.5\nN40 G43 Z0.2 H1\n" +
+    "N45 G1 Z-0.1 F10.\nN50 X3. F40.\nN55 Y2.5\nN60 G0 Z0.2\nN65 M5\nN70 M30\n%\n");
+  let text = postWithWorkpiece(inch, true, {lower: {x: -0.25, y: 0, z: -1}, upper: {x: 3.75, y: 3, z: 0}});
+  assert.ok(annotated(text), text.slice(0, 400));
+  let stock = text.split("\n").find((l) => /NCJ STOCK/.test(l)) || "";
+  assert.ok(/BOX_IN=-0\.25(00)?,0(\.0+)?,-1(\.0+)?,3\.75(00)?,3(\.0+)?,0(\.0+)?\b/.test(stock), stock);
+  assert.ok(/BOX_MM=-6\.35(0)?,/.test(stock), stock);
+  assert.ok(/FROM=hook-fusion360/i.test(stock), stock);
+  assert.ok(/GIVEN/.test(stock), stock);
+  // A metric program and its workpiece in mm.
+  const mm = path.join(dir, "1002.ngc");
+  fs.copyFileSync(PROGRAM_A, mm);
+  text = postWithWorkpiece(mm, false, {lower: {x: 0, y: 0, z: -20}, upper: {x: 200, y: 40, z: 0}});
+  stock = text.split("\n").find((l) => /NCJ STOCK/.test(l)) || "";
+  assert.ok(/BOX_MM=0(\.0+)?,0(\.0+)?,-20(\.0+)?,200(\.0+)?,40(\.0+)?,0(\.0+)?\b/.test(stock), stock);
+  assert.ok(/FROM=hook-fusion360/i.test(stock), stock);
+  // The same program with the stock typed in the hook's property: the user's own, not the hook's.
+  fs.copyFileSync(PROGRAM_A, mm);
+  modernPost(mm, {ncjoulePath: NCJOULE, ncjouleMachine: MACHINE});
+  stock = fs.readFileSync(mm, "latin1").split("\n").find((l) => /NCJ STOCK/.test(l)) || "";
+  assert.ok(/FROM=option/i.test(stock), stock);
 });
 
 test("the post's properties are kept and the hook's added beside them", () => {

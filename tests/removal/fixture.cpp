@@ -50,6 +50,14 @@ ProgramBuilder& ProgramBuilder::arc(double x, double y, double z, double cx, dou
   return *this;
 }
 
+ProgramBuilder& ProgramBuilder::arc_in(Plane plane, double x, double y, double z, double c1,
+                                       double c2, int rotation) {
+  CanonCommand& c = add(CanonKind::Arc, x, y, z);
+  c.plane = c.state.plane = plane;
+  c.centre_first = c1, c.centre_second = c2, c.rotation = rotation;
+  return *this;
+}
+
 Timeline constant_speed_timeline(const std::vector<CanonCommand>& commands, double max_step_mm,
                                  double rapid_mm_s) {
   Timeline tl;

@@ -20,6 +20,9 @@ public:
   // XY-plane arc or helix to (x, y, z) around (cx, cy); rotation as in CanonCommand
   // (+1 counter-clockwise, -1 clockwise).
   ProgramBuilder& arc(double x, double y, double z, double cx, double cy, int rotation);
+  // An arc in another plane: centre (c1, c2) in the plane's axes (Z/X for G18, Y/Z for G19).
+  ProgramBuilder& arc_in(Plane plane, double x, double y, double z, double c1, double c2,
+                         int rotation);
   const std::vector<CanonCommand>& commands() const { return commands_; }
 
 private:

@@ -136,7 +136,7 @@ TEST_CASE("default stock: bounding box of the cutting moves") {
 
   const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
   CHECK(r.stock_description.find("guessed") != std::string::npos);
-  CHECK(r.stock_description.find("travels in XY") != std::string::npos);
+  CHECK(r.stock_description.find("top: Z0") != std::string::npos);
   CHECK(r.removed_mm3 > 0);
 
   ProgramBuilder air;
@@ -179,17 +179,19 @@ TEST_CASE("default stock: feed plunges from a clearance plane do not raise its t
   CHECK(box->zmax == -2);
   CHECK(box->zmin == -4);
 
+  // The guess: the top at Z0 (every cut runs below it), the slots cut 2 mm deep each, in a
+  // stock as wide as their grooves (lines: the tool's edge, not its centre, is within it).
   const RemovalResult r = simulate_removal(p.commands(), tl, tools, StockSpec{});
   for (const Diagnostic& d : r.diagnostics)
     CHECK_MESSAGE(d.severity == Severity::Note, d.message);
   for (const CommandRemoval& c : r.commands)
     CHECK_FALSE(c.collision);
-  // The box is the second slot's layer: 2 mm of the 46 x 6 mm stadium footprint of both slots
-  // (with half discs); the second slot removes all of it, the first nothing.
-  const double layer = (40 * 6 + std::numbers::pi * 9) * 2;
-  CHECK(r.stock_volume_mm3 == doctest::Approx(46 * 6 * 2).epsilon(1e-9));
-  CHECK(r.removed_mm3 == doctest::Approx(layer).epsilon(2e-3));
-  CHECK(r.commands[2].removed_mm3 == 0); // the first slot runs along the top
+  const double layer = (40 * 6 + std::numbers::pi * 9) * 2; // a 2 mm layer of one groove
+  CHECK(r.stock_volume_mm3 == doctest::Approx(46 * 6 * 4).epsilon(1e-9));
+  CHECK(r.removed_mm3 == doctest::Approx(2 * layer).epsilon(2e-3));
+  // The first slot (its plunge and its pass) removes the top layer; the rapid at Z2 runs above.
+  CHECK(r.commands[1].removed_mm3 + r.commands[2].removed_mm3 ==
+        doctest::Approx(layer).epsilon(2e-3));
 }
 
 TEST_CASE("default stock: positioning at a high feed does not raise its top or widen it") {

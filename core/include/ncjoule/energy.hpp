@@ -215,6 +215,7 @@ struct CommandEnergy {
   double energy_j = 0;
   double mean_power_w = 0; // energy / duration; the instantaneous power when duration is 0
   double peak_power_w = 0;
+  double peak_power_without_cutting_w = 0; // the same with the cutting component left out
   double removed_mm3 = 0;
   double sec_j_mm3 = 0; // energy / removed volume, 0 when nothing was removed
   ComponentValues components_j{};

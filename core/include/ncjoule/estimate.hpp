@@ -216,9 +216,45 @@ struct SetupSummary {
   std::string reason; // "the program's start", "M0 at line 41, then G55"
   std::string stock;  // the stock it cuts, as RemovalResult::stock_description says
   StockSource stock_source = StockSource::None; // given, the program's, guessed from its cuts
+  std::string stock_from;        // the kind of its source (RemovalResult::stock_from)
+  std::string stock_origin;      // where it is written (RemovalResult::stock_origin)
   std::optional<Box3> stock_box; // program coordinates, mm; empty: no stock simulated
   double time_s = 0, energy_j = 0, removed_mm3 = 0;
 };
+
+// The figures that rest on a guessed stock (a setup whose stock nothing states: removal.hpp's
+// guess_stock), with the range each can span: from no removal at all in the guessed setups (the
+// floor) to the guess. Removed volume, MRR, cutting power and energy, peak power and SEC depend on
+// it; times do not. A block that would need more than the spindle's rated power under a guessed
+// stock is where the guess is wrong (material the CAM knew was gone: rest machining, a lead-in
+// from outside the part): such blocks are listed, and their cutting is left out of the peak.
+struct StockGuessRange {
+  bool guessed = false;          // some setup's stock is guessed
+  double removed_mm3 = 0;        // what the guessed setups remove (the floor is 0)
+  double cutting_energy_j = 0;   // their cutting energy (the energy's floor is the total less it)
+  double peak_power_floor_w = 0; // the program's peak with no cutting in the guessed setups
+  double peak_power_guess_w = 0; // the peak the guess gives, its overloads included
+  // Blocks over the spindle's rating under the guessed stock: how many, the first and the worst
+  // (0-based lines; -1: none) and the worst one's share of the rating.
+  std::size_t overload_blocks = 0;
+  int first_overload_line = -1, worst_overload_line = -1;
+  double worst_load = 0;
+};
+
+// The program's figures that rest on a guessed stock, each as the range it can span: from no
+// removal in the guessed setups (low) to the guess (high). SEC has no such floor (nothing
+// removed): it is only marked. Empty (guessed == false) when every stock is known.
+struct GuessedFigures {
+  struct Range {
+    double low = 0, high = 0;
+  };
+  bool guessed = false;
+  Range removed_mm3, energy_j, peak_power_w, co2_kg, cost;
+  // The peak with the blocks over the spindle's rating under the guess (left out of high).
+  double peak_with_overloads_w = 0;
+};
+struct Estimate;
+GuessedFigures guessed_figures(const Estimate& e);
 
 // mm^3 in a cubic inch (25.4^3): an inch program's volumes and removal rates are read in in^3.
 inline constexpr double kMm3PerIn3 = 25.4 * 25.4 * 25.4;
@@ -245,6 +281,9 @@ struct Estimate {
   EnergyResult energy;                  // totals and components (no per-command list)
   std::vector<OperationSummary> operations;
   std::vector<SetupSummary> setups; // at least one
+  // The range of the figures a guessed stock sets (guessed == false when every stock is known).
+  // energy.peak_power_w leaves out the cutting of blocks over the rating under a guessed stock.
+  StockGuessRange stock_guess;
   // Feed moves taken for positioning rather than cutting (StockExtent::positioning_moves).
   std::size_t positioning_moves = 0;
   std::vector<LineSummary> lines; // one per source line that holds code, in file order

@@ -127,8 +127,14 @@ struct StockSpec {
   std::array<LengthUnit, 6> box_units{}; // of xmin, ymin, zmin, xmax, ymax, zmax
   std::string stl_path;                  // Kind::Stl
   LengthUnit stl_units = LengthUnit::Program;
-  // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", ...
+  // Where it came from, for the summaries: "--stock", "job file x.ncjoule.toml", "Vectric
+  // Material Size block, lines 5-7", "CAMotics project bear.camotics", ...
   std::string origin;
+  // The kind of that source, one word for the JSON and the header (docs/stock.md lists them):
+  // "option", "hook-fusion360", "job-file", "stock-file", "camotics", "freecad-job",
+  // "user-config", "vectric", "stock-comment", "sinumerik-workpiece", "heidenhain-blk-form".
+  // Empty for Kind::Default (the stock is guessed from the cuts).
+  std::string from;
   bool stated_by_program = false; // read from the program's CAM comments (cam_stock.hpp)
   // Kind::Box known by its size only ("(STOCK 4.125 x 3.625 x 1.000)"): `box` runs from 0 to
   // the size, and the stock is placed where the cutting moves fit it (place_sized_stock).
@@ -186,6 +192,29 @@ std::optional<std::pair<double, LengthUnit>> parse_length(std::string_view text)
 std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
                                       const Timeline& timeline, const std::map<int, Tool>& tools);
 
+// What the stock guess reads of one tool's cuts (its feed moves that cut, positioning left out:
+// see default_stock_box), in program coordinates (mm).
+struct ToolCuts {
+  int number = 0;
+  double radius = 0;
+  Box3 centre; // the extent of the tool tip's path (not widened by the radius)
+  // The same of the path at or below Z0 (to kZ0ToleranceMm): without lead-ins and ramps that
+  // start above a stock whose top is Z0. Empty where nothing cuts there.
+  Box3 centre_below_z0;
+  // XY length the tool travels while cutting above Z0 (beyond kZ0ToleranceMm) and at or below it.
+  double length_above_z0 = 0, length_below_z0 = 0;
+  // The Z levels it cuts across XY at (level moves), with the XY length at each, highest first;
+  // a program of many levels (3D waterlines) keeps the highest few hundred.
+  std::vector<std::pair<double, double>> levels;
+  double level_length = 0; // XY length of all its level moves
+  // Highest Z of a level move that cuts; of any cutting move's start; of a cutting move that
+  // travels in XY (ramps, helices); -inf where there is none.
+  double top_level = -std::numeric_limits<double>::infinity();
+  double top_start = top_level, top_travel = top_level;
+};
+// A cut within this of Z0 is at Z0 (a surface engraved at Z-0.005, a post's rounding).
+inline constexpr double kZ0ToleranceMm = 0.01;
+
 // default_stock_box gathered one command at a time, for a pipeline that keeps no list of the
 // program's commands: per tool number, the extent of its cutting moves (arcs walked along);
 // box() widens each tool's by its radius once the tools are known.
@@ -193,6 +222,8 @@ class StockExtent {
 public:
   void add(const CanonCommand& command);
   std::optional<Box3> box(const std::map<int, Tool>& tools) const;
+  // What each tool of `tools` cuts (tools that cut nothing left out), by tool number.
+  std::vector<ToolCuts> tool_cuts(const std::map<int, Tool>& tools) const;
   // The Z levels the cutting moves start and end at (the voxel engine's layer boundaries), up
   // to a few thousand.
   std::vector<double> cutting_levels() const;
@@ -208,15 +239,26 @@ private:
     void include(const Pose& p);
     void include(const Extent& e);
   };
+  // XY length of level moves by their Z (to 1e-4 mm), up to kMaxLevelZs levels; past that, the
+  // length is only split at Z0.
+  struct LevelLengths {
+    std::map<double, double> at;
+    double above = 0, below = 0;
+    void add(double z, double length);
+  };
   // The level moves (across XY at one Z) of one tool at one feed rate, before its first plunge
   // and after it (those at or above that plunge's start are left out as they come).
   struct Level {
     double feed = 0; // mm/min (G94), or 0 where the feed is not a rate per minute
     Extent before, after;
+    Extent before_low, after_low; // of the moves at or below Z0
     std::size_t moves_before = 0, moves_after = 0;
+    LevelLengths length_before, length_after;
   };
   struct PerTool {
-    Extent other; // the tool's feed moves that are not level: plunges, ramps, helices
+    Extent other;     // the tool's feed moves that are not level: plunges, ramps, helices
+    Extent other_low; // their path at or below Z0
+    double other_above = 0, other_below = 0; // their XY length above Z0 and at or below it
     double top_start = -std::numeric_limits<double>::infinity(); // of any cutting move
     double top_travel = top_start; // highest Z of a non-level move that travels in XY
     double first_plunge_start = std::numeric_limits<double>::quiet_NaN();
@@ -231,6 +273,7 @@ private:
     std::vector<CanonCommand> hop;
   };
   static constexpr std::size_t kMaxHopMoves = 8;
+  static constexpr std::size_t kMaxLevelZs = 256;
   // A level move of tool `t` into its levels (or left out above its first plunge).
   void add_level(PerTool& t, const CanonCommand& cmd);
   // Where a move counts in any case: its extent's corners and arc sides, length, levels.
@@ -241,12 +284,39 @@ private:
   StockExtent settled() const; // a copy with every held hop taken as cuts
   static constexpr std::size_t kMaxLevels = 4096;
   static constexpr std::size_t kMaxFeeds = 64;
+  // The feed at which the tool cuts its deepest level (0: none known); level moves more than
+  // kHighFeedFactor times faster are positioning.
+  static double cutting_feed_of(const PerTool& t);
+  // Whether level bucket `l` (or its moves before the first plunge) holds positioning only.
+  static bool positioning_feed(const PerTool& t, const Level& l);
+  static bool before_plunge_positioning(const PerTool& t, const Level& l);
   // The tool's level moves that cut: not at a feed far above its cutting feed, not above its
   // first plunge's start. Sets `positioning` to how many were left out.
-  static Extent cutting_levels_of(const PerTool& t, std::size_t& positioning);
+  static Extent cutting_levels_of(const PerTool& t, std::size_t& positioning,
+                                  bool below_z0 = false);
   std::map<int, PerTool> tools_;
   std::vector<double> levels_;
 };
+
+// The stock a machinist would take when nothing states it, from the cuts of one setup
+// (docs/removal.md, "The guessed stock", gives the rules with an example each):
+//  - top: Z0 when the cuts travel at or below it (posts put Z0 on the stock's top: an engraving
+//    just under Z0 cuts a stock whose top is Z0, a face at Z-0.5 has material above it); a face
+//    at Z0 itself has a facing allowance above it; a program that cuts above Z0 (Z0 on the
+//    table) has its top at the highest level it cuts;
+//  - bottom: the lowest cut;
+//  - outline: the tool paths' extent; a face mill's passes, which run past the part, do not
+//    widen it where other tools say where the part is;
+//  - a later setup cuts what the first one left: its outline is no larger than the first
+//    setup's, nor its height.
+struct StockGuess {
+  Box3 box;                       // program coordinates, mm
+  std::vector<std::string> rules; // the rules that set it, in words, for the summary
+};
+// `first_setup`: the stock of the program's first setup, which bounds a later setup's (null for
+// the first). std::nullopt when nothing cuts.
+std::optional<StockGuess> guess_stock(const std::vector<ToolCuts>& cuts, bool program_inch,
+                                      const Box3* first_setup = nullptr);
 
 // Which way a program's Z runs, from where its rapids cross XY: on a standard mill (+Z away from
 // the work) a program retracts to cross, so its rapids across XY run above its lowest cut. One
@@ -411,6 +481,9 @@ struct RemovalOptions {
   // stock must then be of the mirrored commands (mirrored_z).
   bool mirror_z = false;
   bool program_inch = false; // the program's units (G20): for what a stock's units are said to be
+  // The stock of the program's first setup, in program coordinates (mm), when this is a later
+  // setup: a guessed stock is no larger than what the first setup left.
+  std::optional<Box3> first_setup_stock;
 };
 inline constexpr std::size_t kDefaultRemovalMemoryBudget = std::size_t(1) << 30; // 1 GiB
 
@@ -457,6 +530,8 @@ struct RemovalResult {
   double removed_mm3 = 0;
   std::string stock_description; // which stock was used, e.g. "box ... (from cutting moves)"
   StockSource stock_source = StockSource::None;
+  std::string stock_from = "none"; // StockSpec::from; "guess" for a box of the cuts
+  std::string stock_origin;        // StockSpec::origin, where that stock is written
   Box3 stock_box;               // its bounds in program coordinates (mm), as the program writes Z
   std::size_t memory_bytes = 0; // memory held by the stock model
   std::vector<Diagnostic> diagnostics; // collisions, unknown tools, ...
@@ -490,6 +565,8 @@ public:
   RemovalSimulator& operator=(const RemovalSimulator&) = delete;
 
   bool ready() const { return engine_ != nullptr; }
+  // Where the stock came from (StockSource::None when there is none to cut).
+  StockSource stock_source() const { return engine_ ? totals_.stock_source : StockSource::None; }
   const GridFrame& grid() const { return grid_; }
   // The sample step the planner should use for this grid and these tools.
   double sample_step_mm() const { return sample_step_; }

@@ -60,7 +60,9 @@ struct ProgramTotals {
   bool volumes_known = false; // removal simulated with every tool described
   std::size_t setups = 1;     // clampings of the part (Estimate::setups)
   bool stock_guessed = false; // a setup's stock is the box of its own cuts, not one given
-  bool inch = false;          // the program is in inches (Estimate::inch)
+  GuessedFigures guess;       // the range of the figures that guess sets
+  double peak_power_w = 0;
+  bool inch = false; // the program is in inches (Estimate::inch)
 };
 ProgramTotals program_totals(const Estimate& estimate);
 

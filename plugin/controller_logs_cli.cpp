@@ -130,6 +130,30 @@ int read_evidence(const LogOptions& o, const std::vector<std::string>& programs,
   return kOk;
 }
 
+int measured_overlays(const LogOptions& o, const std::vector<std::string>& programs,
+                      const std::string& dialect, const MachineProfile& machine,
+                      std::vector<MeasuredOverlay>& overlays) {
+  EstimateOptions options;
+  if (!dialect.empty()) {
+    options.dialect = dialect_from_option(dialect);
+    if (!options.dialect) return kUsage;
+  }
+  LogEvidence evidence;
+  std::vector<LineTimes> times;
+  if (const int status = read_evidence(o, programs, options, machine, evidence, times);
+      status != kOk)
+    return status;
+  const std::vector<ProgramCheck> checks = check_programs(evidence, times);
+  for (const ProgramCheck& c : checks) {
+    overlays.push_back(measured_overlay(evidence, c, times[c.program]));
+    const MeasuredOverlay& m = overlays.back();
+    std::fprintf(stderr, "ncjoule: %s: %zu run%s in the logs, %zu usable\n",
+                 evidence.programs[c.program].source.path.c_str(), m.runs.size(),
+                 m.runs.size() == 1 ? "" : "s", m.usable_runs);
+  }
+  return kOk;
+}
+
 void print_log_summary(const LogEvidence& e) {
   const ControllerLog& log = e.log;
   std::printf("logs\n");

@@ -34,6 +34,11 @@ void print_log_summary(const LogEvidence& evidence);
 void print_run_table(const LogEvidence& evidence);
 // Per program: totals, operations and the worst stretches, measured against predicted.
 void print_program_checks(const LogEvidence& evidence, const std::vector<ProgramCheck>& checks);
+// For `ncjoule report --log`: the logs read with the programs and checked as check-log checks
+// them (`dialect` as its --dialect), one overlay per program, in order; kOk or an exit code.
+int measured_overlays(const LogOptions& options, const std::vector<std::string>& programs,
+                      const std::string& dialect, const MachineProfile& machine,
+                      std::vector<MeasuredOverlay>& overlays);
 // The same as one JSON document (docs/controller-logs.md): the runs and the checks.
 std::string check_json(const LogEvidence& evidence, const std::vector<ProgramCheck>& checks,
                        const MachineProfile& machine);

@@ -17,6 +17,7 @@
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/logs.hpp"
 #include "ncjoule/machine.hpp"
+#include "ncjoule/report.hpp"
 
 namespace ncjoule {
 
@@ -132,6 +133,13 @@ struct ProgramCheck {
 std::vector<ProgramCheck> check_programs(const LogEvidence& evidence,
                                          const std::vector<LineTimes>& times,
                                          std::size_t worst_blocks = 10);
+
+// A program's runs and check as the HTML report draws them over its prediction (`times`: the
+// program's, as check_programs took them): the check's figures, the runs, and the line each
+// usable run had reached over time beside the line the prediction reaches at the overrides of
+// the run of median time.
+MeasuredOverlay measured_overlay(const LogEvidence& evidence, const ProgramCheck& check,
+                                 const LineTimes& times);
 
 // ---------------------------------------------------------------------------------------------
 // The fit

@@ -4,9 +4,10 @@
 # DLLs they load, the C header, the machine profiles, the hooks for Windows CAM systems and a
 # README for Windows users.
 #
-# Every feature is in: removal runs on TBB, calibrate on Ceres. Debian ships those two only as
-# Linux binaries, so they are built for Windows from Debian's own source packages (apt-get source,
-# with a deb-src entry this script adds); the header-only libraries (Eigen, CLI11, toml++,
+# Every feature is in: removal runs on TBB, calibrate on Ceres, the controller logs (check-log,
+# calibrate --timing) read XML with pugixml. Debian ships those three only as Linux binaries, so
+# they are built for Windows from Debian's own source packages (apt-get source, with a deb-src
+# entry this script adds); the header-only libraries (Eigen, CLI11, toml++,
 # nlohmann-json, spdlog and fmt in their header-only modes) are taken from Debian's -dev packages.
 # Nothing is downloaded from anywhere but Debian's archive.
 #
@@ -42,10 +43,10 @@ install_packages "${packages[@]}"
 cc=x86_64-w64-mingw32-gcc-posix
 cxx=x86_64-w64-mingw32-g++-posix
 
-stage "Debian source packages (onetbb, ceres-solver)"
+stage "Debian source packages (onetbb, ceres-solver, pugixml)"
 mkdir -p "$deps/src"
 need_source=()
-for src in onetbb ceres-solver; do
+for src in onetbb ceres-solver pugixml; do
   [ -f "$deps/src/$src.unpacked" ] || need_source+=("$src")
 done
 if [ "${#need_source[@]}" -gt 0 ]; then
@@ -70,6 +71,7 @@ EOF
 fi
 tbb_src=$(find "$deps/src/onetbb" -mindepth 1 -maxdepth 1 -type d | head -n1)
 ceres_src=$(find "$deps/src/ceres-solver" -mindepth 1 -maxdepth 1 -type d | head -n1)
+pugixml_src=$(find "$deps/src/pugixml" -mindepth 1 -maxdepth 1 -type d | head -n1)
 
 # The toolchain: Windows x64 with MinGW-w64's posix-thread compilers; libraries and packages are
 # looked for only in the MinGW sysroot and the prefix built here, never in Linux's /usr.
@@ -166,6 +168,16 @@ if [ ! -f "$prefix/ceres.done" ]; then
     -DBUILD_DOCUMENTATION=OFF -DPROVIDE_UNINSTALL_TARGET=OFF >"$deps/ceres-configure.log"
   build_logged "$deps/ceres-build"
   touch "$prefix/ceres.done"
+fi
+
+stage "pugixml for Windows (Debian source)"
+if [ ! -f "$prefix/pugixml.done" ]; then
+  rm -rf "$deps/pugixml-build"
+  # A static library: linked into ncjoule.dll, no DLL of its own to ship.
+  cmake -S "$pugixml_src" -B "$deps/pugixml-build" "${cross[@]}" -DBUILD_SHARED_LIBS=OFF \
+    -DPUGIXML_BUILD_TESTS=OFF >"$deps/pugixml-configure.log"
+  build_logged "$deps/pugixml-build"
+  touch "$prefix/pugixml.done"
 fi
 
 stage "ncjoule for Windows"

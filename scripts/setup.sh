@@ -8,6 +8,7 @@ packages=(
   ccache                        # the package's build (scripts/package.sh) reuses build/'s objects
   libeigen3-dev libtbb-dev libceres-dev libspdlog-dev libfmt-dev doctest-dev
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
+  libpugixml-dev                # XML: MTConnect device files and Streams documents (core/logs)
   zlib1g-dev                    # inflates FreeCAD documents (.FCStd, zips) beside a program
   linuxcnc-uspace               # rs274, the reference G-code interpreter used by the tests
   clang libclang-rt-14-dev      # libFuzzer for scripts/fuzz.sh

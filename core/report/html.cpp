@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "html_assets.hpp"
+#include "html_measured.hpp"
 #include "ncjoule/duration.hpp"
 #include "ncjoule/report.hpp"
 #include "svg_chart.hpp"
@@ -118,11 +119,12 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
       html_escaped(e.removal ? e.removal->stock_description : "stock not simulated") + "</div>";
   html += kpi_cards(e);
   html += report_detail::svg_operation_timeline(id + "-timeline", ops, e.time_s);
+  const std::string color = report_detail::program_color(index);
+  if (p.measured) html += report_detail::measured_section(id, *p.measured, ops, color);
   html += report_detail::svg_toolpath(id + "-xy", "Toolpath from above (XY), feed moves by power",
                                       e.path, report_detail::PathView::XY);
   html += report_detail::svg_toolpath(id + "-xz", "Toolpath from the front (XZ)", e.path,
                                       report_detail::PathView::XZ);
-  const std::string color = report_detail::program_color(index);
   html += report_detail::svg_time_chart(
       id + "-power", "Power over time", "W",
       {{base_name(e.file), color, downsample_min_max(series.power_w, kMaxChartPoints)}}, markers,
@@ -267,6 +269,9 @@ std::string html_report(const std::vector<ReportProgram>& programs, const Machin
   html += "<header class=\"top\"><span class=\"brand\">ncjoule</span><h1>Time and energy: " +
           html_escaped(names) + "</h1><div class=\"sub\">Machine: " + html_escaped(machine.name) +
           " &middot; " + html_escaped(model) + "</div></header>\n<main>\n";
+  bool measured = false;
+  for (const ReportProgram& p : programs)
+    measured = measured || p.measured != nullptr;
   if (programs.size() > 1) html += comparison_section(programs, machine) + "\n";
   for (std::size_t i = 0; i < programs.size(); ++i)
     html += program_section(programs[i], machine, i) + "\n";
@@ -275,7 +280,12 @@ std::string html_report(const std::vector<ReportProgram>& programs, const Machin
           ". Energy is split by component (tare, coolant, spindle, each axis, cutting, tool "
           "change); charts show at most " +
           std::to_string(kMaxChartPoints) +
-          " points per line, keeping each interval's lowest and highest value.</footer>\n";
+          " points per line, keeping each interval's lowest and highest value." +
+          (measured ? " Measured: the controller's log of the runs, read as <code>ncjoule "
+                      "check-log</code> reads it; the predicted line is at the overrides the run "
+                      "of median time was logged at."
+                    : "") +
+          "</footer>\n";
   html += std::string("<script>") + report_detail::report_script() + "</script>\n</body></html>\n";
   return html;
 }

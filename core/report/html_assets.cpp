@@ -39,6 +39,8 @@ svg .axis-title{font-size:12px;fill:#64748b}
 svg .axis-title.end{text-anchor:end}
 svg .frame{fill:none;stroke:#cbd5e1;stroke-width:1}
 svg path.line{fill:none;stroke-width:1.4;stroke-linejoin:round}
+svg path.line.faint{stroke-opacity:.35;stroke-width:1}
+.measured table.runs td.name{white-space:normal}
 svg.toolpath-view path.feed{fill:none;stroke-width:1.6;stroke-linecap:round}
 svg.toolpath-view path.rapid{fill:none;stroke:#94a3b8;stroke-width:.7;stroke-dasharray:4 3}
 svg.toolpath-view path:hover{stroke-width:4}
@@ -68,7 +70,7 @@ th{font-size:11px;text-transform:uppercase;letter-spacing:.5px;color:var(--muted
 td.name,th.name{text-align:left;white-space:normal}
 tr.best td{background:#ebfbee}
 td .swatch{display:inline-block;width:10px;height:10px;border-radius:2px;margin-right:6px}
-.up{color:#c92a2a}.down{color:#2b8a3e}
+.up{color:#c92a2a}.down{color:#2b8a3e}.off{color:#c92a2a;font-weight:600}
 .note{color:var(--muted);font-size:12px;margin:0 0 12px}
 .why{margin:4px 0 14px;padding:0;list-style:none}
 .why li{margin:3px 0}
@@ -127,6 +129,7 @@ const char* report_script() {
       head.textContent = "t = " + clock(t) + " (" + t.toFixed(1) + " s)";
       tip.appendChild(head);
       series.forEach(function (s) {
+        if (s.faint) return;
         var i = at(s.t, t);
         var row = document.createElement("div");
         var sw = document.createElement("i");
@@ -134,7 +137,8 @@ const char* report_script() {
         row.appendChild(sw);
         var v = i < 0 ? 0 : s.v[i];
         row.appendChild(document.createTextNode(
-            (series.length > 1 ? s.name + ": " : "") + v.toFixed(v < 100 ? 1 : 0) + " " + unit));
+            (series.length > 1 ? s.name + ": " : "") +
+            (Number.isInteger(v) ? String(v) : v.toFixed(v < 100 ? 1 : 0)) + " " + unit));
         tip.appendChild(row);
       });
       var fig = svg.parentNode.getBoundingClientRect();

@@ -165,9 +165,11 @@ std::string svg_time_chart(const std::string& id, const std::string& title, cons
          "</figcaption>";
   if (lines.size() > 1) {
     svg += "<div class=\"legend\">";
+    std::set<std::string> named;
     for (const ChartLine& l : lines)
-      svg +=
-          "<span><i style=\"background:" + l.color + "\"></i>" + html_escaped(l.name) + "</span>";
+      if (named.insert(l.name).second)
+        svg += "<span><i style=\"background:" + l.color + (l.faint ? ";opacity:.4" : "") +
+               "\"></i>" + html_escaped(l.name) + "</span>";
     svg += "</div>";
   }
   // The tooltip script reads the points back from data-series.
@@ -175,7 +177,7 @@ std::string svg_time_chart(const std::string& id, const std::string& title, cons
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const ChartLine& l = lines[i];
     data += (i ? "," : "") + std::string("{\"name\":") + json_string(l.name) +
-            ",\"color\":" + json_string(l.color) + ",\"t\":[";
+            ",\"color\":" + json_string(l.color) + (l.faint ? ",\"faint\":true" : "") + ",\"t\":[";
     for (std::size_t k = 0; k < l.points.t_s.size(); ++k)
       data += (k ? "," : "") + json_number(l.points.t_s[k]);
     data += "],\"v\":[";
@@ -237,8 +239,8 @@ std::string svg_time_chart(const std::string& id, const std::string& title, cons
                                coord(y_of(0)) + " Z";
       svg += "<path class=\"area\" fill=\"" + l.color + "\" d=\"" + area + "\"/>";
     }
-    svg += "<path class=\"line\" stroke=\"" + l.color + "\" d=\"" + path + "\"><title>" +
-           html_escaped(l.name) + "</title></path>";
+    svg += std::string("<path class=\"line") + (l.faint ? " faint" : "") + "\" stroke=\"" +
+           l.color + "\" d=\"" + path + "\"><title>" + html_escaped(l.name) + "</title></path>";
   }
   svg += "<rect class=\"frame\" x=\"" + coord(kLeft) + "\" y=\"" + coord(kTop) + "\" width=\"" +
          coord(plot_w) + "\" height=\"" + coord(plot_h) + "\"/>";

@@ -18,7 +18,8 @@ std::string clock_label(double seconds);
 struct ChartLine {
   std::string name;
   std::string color;
-  Series points; // already downsampled
+  Series points;      // already downsampled
+  bool faint = false; // drawn light, under the others, and left out of the tooltip
 };
 
 struct ChartMarker { // a vertical line at a time, e.g. where an operation starts
@@ -27,7 +28,8 @@ struct ChartMarker { // a vertical line at a time, e.g. where an operation start
 };
 
 // A value-over-time chart; `unit` labels the y axis. The points go into the SVG's path and, for
-// the tooltip script, into a data-series attribute as JSON.
+// the tooltip script, into a data-series attribute as JSON. Lines of the same name share one
+// entry in the legend.
 std::string svg_time_chart(const std::string& id, const std::string& title, const std::string& unit,
                            const std::vector<ChartLine>& lines,
                            const std::vector<ChartMarker>& markers, double t_end_s);

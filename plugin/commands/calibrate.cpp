@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "calibrate_timing_cli.hpp"
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "ncjoule/calibrate.hpp"
@@ -37,6 +38,8 @@ struct CalibrateCliOptions {
   std::string zhou;
   std::string log;
   std::string program;
+  std::vector<std::string> logs, programs; // as given: one each, or several with --timing
+  TimingCalibrationOptions timing;
   std::string stock;   // as estimate's --stock
   std::string dialect; // as estimate's --dialect
   double max_offset_s = 60;
@@ -341,10 +344,12 @@ const Registration registration([](CLI::App& app, int& exit_code) {
                   "Cutting table: rpm, mrr, power -> Zhou's c1..c4 (all >= 0) and the SEC "
                   "model's d1..d4")
       ->check(CLI::ExistingFile);
-  auto* log = cmd->add_option("--log", o->log,
-                              "Power log (time_s, power_w) of a run of --program on --machine")
+  auto* log = cmd->add_option("--log", o->logs,
+                              "Power log (time_s, power_w) of a run of --program on --machine; "
+                              "with --timing, the controller's MTConnect logs (repeatable)")
                   ->check(CLI::ExistingFile);
-  auto* program = cmd->add_option("--program", o->program, "NC program the log recorded")
+  auto* program = cmd->add_option("--program", o->programs,
+                                  "NC program the log recorded (with --timing: repeatable)")
                       ->check(CLI::ExistingFile)
                       ->needs(log);
   log->needs(program);
@@ -364,7 +369,28 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"huber", "cauchy", "none"}))
       ->needs(log);
   cmd->add_option("-o,--output", o->output, "New profile (TOML) to write")->required();
-  cmd->callback([o, &exit_code] { exit_code = run_calibrate(*o); });
+  add_timing_options(*cmd, o->timing);
+  cmd->callback([o, &exit_code] {
+    if (o->timing.on) {
+      TimingCalibrationOptions t = o->timing;
+      t.logs.logs = o->logs;
+      t.programs = o->programs;
+      t.machine = o->machine;
+      t.name = o->name;
+      t.output = o->output;
+      t.dialect = o->dialect;
+      exit_code = run_timing_calibration(t);
+      return;
+    }
+    if (o->logs.size() > 1 || o->programs.size() > 1) {
+      std::fprintf(stderr, "one --log and one --program (several only with --timing)\n");
+      exit_code = kUsage;
+      return;
+    }
+    o->log = o->logs.empty() ? "" : o->logs.front();
+    o->program = o->programs.empty() ? "" : o->programs.front();
+    exit_code = run_calibrate(*o);
+  });
 });
 
 } // namespace

@@ -62,3 +62,43 @@ TEST_CASE("programs rank by energy and carry their differences to the best") {
   CHECK(explain_difference(ranked[2]) == "axis_y +1.5 kJ, axis_x -1.1 kJ");
 }
 
+TEST_CASE("the measured runs are drawn over the predicted line, the median run on top") {
+  Estimate e;
+  e.file = "part.nc";
+  e.time_s = 100;
+  MeasuredOverlay m;
+  m.logs = "mill.shdr";
+  m.usable_runs = 3;
+  m.total = {"part.nc", 0, 0, 104, 101, 110, 3, 100};
+  m.operations = {{"Face <1>", 1, 3, 104, 101, 110, 3, 100}};
+  m.runs = {{"2024-05-02 08:00:00 UTC", 101, "PROGRAM_COMPLETED", true, ""},
+            {"2024-05-02 09:00:00 UTC", 104, "PROGRAM_COMPLETED", true, ""},
+            {"2024-05-02 10:00:00 UTC", 110, "PROGRAM_COMPLETED", true, ""},
+            {"2024-05-02 11:00:00 UTC", 30, "STOPPED", false, "held <FEED_HOLD>"}};
+  m.predicted = Series{{0, 50, 100}, {1, 10, 20}};
+  m.measured = {{"measured, run 2 (median)", Series{{0, 60, 104}, {1, 10, 20}}, true},
+                {"run 1", Series{{0, 55, 101}, {1, 10, 20}}, false},
+                {"run 3", Series{{0, 70, 110}, {1, 10, 20}}, false}};
+  MachineProfile machine;
+  const std::string html = html_report({{nullptr, &e, &m}}, machine);
+  const std::size_t chart = html.find("id=\"p1-progress\"");
+  REQUIRE(chart != std::string::npos);
+  const std::string figure = html.substr(chart, html.find("</figure>", chart) - chart);
+  // The two other runs faint and under the median one, which is drawn last.
+  std::size_t faint = 0;
+  for (std::size_t at = figure.find("class=\"line faint\""); at != std::string::npos;
+       at = figure.find("class=\"line faint\"", at + 1))
+    ++faint;
+  CHECK(faint == 2);
+  CHECK(figure.rfind("class=\"line faint\"") < figure.rfind("class=\"line\""));
+  // One legend entry for the faint runs; the axis runs to the longest run.
+  const std::string legend = figure.substr(0, figure.find("<svg"));
+  CHECK(legend.find("other usable runs") == legend.rfind("other usable runs"));
+  CHECK(figure.find("data-t-end=\"110\"") != std::string::npos);
+  // The tables: names and reasons escaped, the error of the program marked (+-5% or more).
+  CHECK(html.find("Face &lt;1&gt;") != std::string::npos);
+  CHECK(html.find("not usable: held &lt;FEED_HOLD&gt;") != std::string::npos);
+  CHECK(html.find("data-measured-s=\"104\"") != std::string::npos);
+  CHECK(html.find("<td class=\"off\">\u22123.8%</td>") == std::string::npos);
+  CHECK(html.find("<td>\u22123.8%</td>") != std::string::npos);
+}

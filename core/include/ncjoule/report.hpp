@@ -114,14 +114,51 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
 // Series that are already short enough come back unchanged.
 Series downsample_min_max(const Series& series, std::size_t max_points);
 
+// What a machine's controller log measured for a program (ncjoule report --log), set over the
+// prediction: the figures `ncjoule check-log` prints, and the line each run had reached over time.
+// Times in s from the run's start (the cycle start).
+struct MeasuredOverlay {
+  struct Figure { // one row of measured against predicted
+    std::string name;
+    int tool = 0;                              // operations: the tool (0: none)
+    int line = 0;                              // 1-based line where it starts
+    double median_s = 0, min_s = 0, max_s = 0; // over the usable runs
+    std::size_t runs = 0;
+    double predicted_s = 0; // at the overrides the runs were logged at
+  };
+  struct Run {         // one run of the program the logs hold
+    std::string start; // when it started, as the log stamps it
+    double time_s = 0;
+    std::string ended;
+    bool usable = false;
+    std::string why; // why not usable
+  };
+  struct Progress { // the line a run had reached over time
+    std::string name;
+    Series lines;
+    bool median = false; // the usable run of median time: drawn over the others
+  };
+  std::size_t usable_runs = 0;
+  Figure total;                   // the whole program
+  std::vector<Figure> operations; // as `ncjoule check-log` prints them
+  std::vector<Figure> worst_blocks;
+  std::vector<Run> runs;
+  Series predicted;               // the line reached over time as predicted for the median run
+  std::vector<Progress> measured; // the usable runs, the median one first
+  std::string logs;               // the log files read, for the caption
+};
+
 struct ReportProgram {
   const SourceFile* source = nullptr;
   const Estimate* estimate = nullptr;
+  const MeasuredOverlay* measured = nullptr; // when a log was given
 };
 
 // One self-contained HTML page (inline CSS, inline SVG charts, a few lines of inline script for
 // tooltips; no external URL): totals, power and MRR over time, energy per operation and per
-// component, and the comparison when there are several programs.
+// component, and the comparison when there are several programs; with a program's `measured`,
+// the line reached over time as measured over the predicted one, and the measured-against-
+// predicted tables.
 std::string html_report(const std::vector<ReportProgram>& programs, const MachineProfile& machine);
 
 } // namespace ncjoule

@@ -1,0 +1,123 @@
+// The timing fit recovers the keys of the machine that made the logs, holds those the logs
+// cannot tell, and writes a profile that loads.
+#include "synthetic_log.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+
+// The machine the logs come from: the Hurco profile with other waits, settling, tool change and
+// acceleration.
+MachineProfile true_machine() {
+  MachineProfile m = shipped_profile("hurco-vmx24");
+  m.kinematics.tool_change_s = 4.0;
+  m.kinematics.tool_change_first_extra_s = 1.0;
+  m.kinematics.settle_s = 0.10;
+  m.kinematics.waits.coolant_on_s = 3.0;
+  m.kinematics.waits.optional_stop_s = 1.5;
+  m.kinematics.waits.program_end_s = 2.0;
+  for (AxisLimits& a : m.kinematics.axes)
+    a.accel_mm_s2 = 4000;
+  return m;
+}
+
+} // namespace
+
+TEST_CASE("timing fit: the keys of the machine that made the logs come back") {
+  const MachineProfile base = shipped_profile("hurco-vmx24");
+  const MachineProfile truth = true_machine();
+  LogEvidence evidence = synthetic_evidence(truth, base, 3, 0.03);
+  judge_runs(evidence, plan_all(evidence, base));
+  REQUIRE(evidence.program_runs.size() == 3);
+  for (const LoggedRun& r : evidence.program_runs)
+    CHECK(r.usable);
+  TimingFitOptions options;
+  options.min_stretch_s = 0; // every stretch on its own: the synthetic log has no noise to join
+  const TimingFit fit = fit_timing(evidence, base, options);
+  CHECK(fit.runs == 3);
+  CHECK(fit.rms_after_s < 0.5 * fit.rms_before_s);
+  CHECK(key_of(fit, TimingKey::ToolChange).fitted);
+  CHECK(key_of(fit, TimingKey::ToolChange).value == doctest::Approx(4.0).epsilon(0.05));
+  CHECK(key_of(fit, TimingKey::ToolChangeFirstExtra).value == doctest::Approx(1.0).epsilon(0.15));
+  CHECK(key_of(fit, TimingKey::CoolantOn).value == doctest::Approx(3.0).epsilon(0.05));
+  CHECK(key_of(fit, TimingKey::OptionalStop).value == doctest::Approx(1.5).epsilon(0.1));
+  CHECK(key_of(fit, TimingKey::ProgramEnd).value == doctest::Approx(2.0).epsilon(0.1));
+  CHECK(key_of(fit, TimingKey::Settle).value == doctest::Approx(0.10).epsilon(0.15));
+  // The accelerations move from the base's 2.5 m/s^2 towards the 4 the logs were made with (a
+  // weak prior holds them near the base where the moves tell little).
+  CHECK(key_of(fit, TimingKey::AccelX).value > 2700);
+  // No rapid of this program is long enough to reach the rapid rate: not in the logs.
+  CHECK_FALSE(key_of(fit, TimingKey::RapidX).fitted);
+  CHECK(key_of(fit, TimingKey::RapidX).why.find("no move reaches it") != std::string::npos);
+  // The control does not wait for the spindle: the fitted wait is nothing, the base kept.
+  CHECK_FALSE(key_of(fit, TimingKey::SpindleRamp).fitted);
+  CHECK_FALSE(fit.spindle_waits);
+  // Every fitted key has an uncertainty.
+  for (const FittedTimingKey& f : fit.keys)
+    if (f.fitted) CHECK(std::isfinite(f.std_error));
+  // No M6 of the tool already in the spindle, no M6 with the spindle turning: not in the logs,
+  // left as in the base.
+  const FittedTimingKey& same = key_of(fit, TimingKey::ToolChangeSameTool);
+  CHECK_FALSE(same.fitted);
+  CHECK(same.value == same.base);
+  CHECK(same.why.find("not in the logs") != std::string::npos);
+  CHECK_FALSE(key_of(fit, TimingKey::ToolChangeSpindleStop).fitted);
+  // The fitted machine times the runs as they were logged.
+  const auto checks = check_programs(evidence, plan_all(evidence, fit.machine));
+  REQUIRE(checks.size() == 1);
+  CHECK(checks[0].predicted_s == doctest::Approx(checks[0].measured.median).epsilon(0.01));
+}
+
+TEST_CASE("timing fit: with no usable run nothing is fitted, and it says so") {
+  const MachineProfile base = shipped_profile("hurco-vmx24");
+  LogEvidence evidence = synthetic_evidence(base, base, 1, 0);
+  for (LoggedRun& r : evidence.program_runs)
+    r.usable = false;
+  const TimingFit fit = fit_timing(evidence, base);
+  CHECK(fit.stretches == 0);
+  CHECK(fit.message.find("no usable run") != std::string::npos);
+  for (const FittedTimingKey& f : fit.keys)
+    CHECK_FALSE(f.fitted);
+}
+
+TEST_CASE("calibrated profile: fitted keys in place of the base's, the rest as it was") {
+  const std::string base_path =
+      std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/hurco-vmx24.toml";
+  std::vector<Diagnostic> d;
+  const auto base_text = read_text_file(base_path, "a profile", d);
+  REQUIRE(base_text);
+  const MachineProfile base = parse_profile(*base_text, base_path);
+  LogEvidence evidence = synthetic_evidence(true_machine(), base, 2, 0.02);
+  judge_runs(evidence, plan_all(evidence, base));
+  TimingFitOptions options;
+  options.min_stretch_s = 0;
+  const TimingFit fit = fit_timing(evidence, base, options);
+  CalibratedProfileInfo info;
+  info.name = "Our VMX24 (synthetic)";
+  info.machine = "mill-7";
+  info.date = "2020-03-02";
+  info.data = {"log synthetic.shdr"};
+  SpindleRunUp run_up;
+  run_up.points = {{1000, 0.2}, {2000, 0.4}};
+  run_up.run_ups = 4;
+  const auto text = calibrated_profile_text(*base_text, base_path, fit, run_up, info, d);
+  REQUIRE(text);
+  CHECK(text->find("calibrated by ncjoule calibrate --timing on 2020-03-02 for mill-7") !=
+        std::string::npos);
+  CHECK(text->find("#   log synthetic.shdr") != std::string::npos);
+  CHECK(text->find("tool_change_same_tool_s: not in the logs") != std::string::npos);
+  CHECK(text->find("\ntool_change_s = 6.0") == std::string::npos); // the base's value is gone
+  CHECK(text->find("base: tool_change_s = 6.0") != std::string::npos);
+  // Comments of the base the fit does not concern stay.
+  CHECK(text->find("# data sheet: 24 hp peak") != std::string::npos);
+  const MachineProfile out = parse_profile(*text, "out.toml");
+  CHECK(out.name == "Our VMX24 (synthetic)");
+  CHECK(out.kinematics.tool_change_s ==
+        doctest::Approx(key_of(fit, TimingKey::ToolChange).value).epsilon(1e-3));
+  CHECK(out.kinematics.waits.coolant_on_s ==
+        doctest::Approx(key_of(fit, TimingKey::CoolantOn).value).epsilon(1e-3));
+  // The path does not wait for the spindle: the measured run-up is written.
+  REQUIRE(out.kinematics.spindle_run_up.size() == 2);
+  CHECK(out.kinematics.spindle_run_up[1].first == 2000);
+}

@@ -1,6 +1,7 @@
 #include "number_format.hpp"
 
 #include "ncjoule/duration.hpp"
+#include "ncjoule/fixed_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,9 +19,10 @@ std::string format_significant(double value, int digits, int max_decimals) {
     if (magnitude >= digits - 1) return whole_number_text(value, digits);
     decimals = std::clamp(digits - 1 - magnitude, 0, max_decimals);
   }
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  std::string out = text;
+  // As "%.*f" writes it (fixed_text.hpp), without printf: annotating writes a few for every
+  // block of the program.
+  std::string out;
+  append_fixed(out, value, decimals);
   if (out.find('.') != std::string::npos) {
     while (out.back() == '0')
       out.pop_back();

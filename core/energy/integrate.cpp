@@ -24,7 +24,7 @@ double instantaneous_power(const CanonCommand& cmd, const PowerConstants& consta
 } // namespace
 
 EnergyIntegrator::EnergyIntegrator(const PowerConstants& constants, const EnergyOptions& options)
-    : constants_(constants), options_(options) {}
+    : constants_(constants), evaluate_power_(constants), options_(options) {}
 
 void EnergyIntegrator::set_rpm_before(double rpm) {
   previous_rpm_ = rpm;
@@ -141,8 +141,8 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
   for (const OperatingSegment* it = first; it != last; ++it) {
     const OperatingSegment& seg = *it;
     const double dt = seg.t1_s - seg.t0_s;
-    const ComponentValues a = component_power_w(constants_, seg.start);
-    const ComponentValues b = component_power_w(constants_, seg.end);
+    const ComponentValues a = evaluate_power_(seg.start);
+    const ComponentValues b = evaluate_power_(seg.end);
     for (std::size_t c = 0; c < kPowerComponentCount; ++c)
       ce.components_j[c] += 0.5 * (a[c] + b[c]) * dt;
     const double peak = std::max(component_sum(a), component_sum(b));

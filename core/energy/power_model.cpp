@@ -99,6 +99,27 @@ ComponentValues component_power_w(const PowerConstants& constants, const Operati
   return power;
 }
 
+PowerEvaluator::PowerEvaluator(const PowerConstants& constants)
+    : model_(constants.model), zhou_c3_(constants.zhou.c3), zhou_c4_(constants.zhou.c4) {
+  for (PowerParameter p : parameters_of(model_))
+    terms_[term_count_++] = {p, parameter_info(p).component, get_parameter(constants, p)};
+}
+
+ComponentValues PowerEvaluator::operator()(const OperatingPoint& point) const {
+  ComponentValues power{};
+  const PowerFeatures f = power_features(model_, point);
+  for (std::size_t i = 0; i < term_count_; ++i) {
+    const Term& t = terms_[i];
+    const double x = f.linear[index(t.parameter)];
+    if (x == 0.0) continue;
+    power[static_cast<std::size_t>(t.component)] += x * t.value;
+  }
+  if (f.zhou_mrr_weight_w != 0.0 && f.zhou_rpm > 0.0)
+    power[static_cast<std::size_t>(PowerComponent::Cutting)] +=
+        f.zhou_mrr_weight_w * zhou_c3_ * std::pow(f.zhou_rpm, zhou_c4_) * point.cutting_factor;
+  return power;
+}
+
 double zhou_power_kw(const ZhouConstants& z, double rpm, double mrr_mm3_s) {
   const double cutting = rpm > 0 ? z.c3 * std::pow(rpm, z.c4) * mrr_mm3_s : 0.0;
   return z.c1_kw + z.c2_kw_per_rpm * rpm + cutting;

@@ -24,6 +24,7 @@
 #include "ncjoule/text_file.hpp"
 #include "result_fold.hpp"
 #include "setups.hpp"
+#include "stage_queue.hpp"
 
 namespace ncjoule {
 namespace {
@@ -299,8 +300,15 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   // Without work offsets, Z home is placed above the highest point seen so far; the second pass
   // places it above the highest point of the whole program.
   estimate_detail::MachineMoves first_view(setup, offsets_given, std::nullopt, source.path);
-  InterpretResult run =
-      interpret(source, interpreter, [&](const CanonCommand& c) { scan.add(first_view.view(c)); });
+  // The interpreter on a thread of its own, the scan here (stage_queue.hpp).
+  InterpretResult run;
+  estimate_detail::run_overlapped<CanonCommand>(
+      options.overlap_stages,
+      [&](estimate_detail::StageQueue<CanonCommand>& commands) {
+        run = interpret(source, interpreter,
+                        [&](const CanonCommand& c) { commands.push(first_view.view(c)); });
+      },
+      [&](const CanonCommand& c) { scan.add(c); });
   const double home_z = first_view.home_z();
   e.dialect = run.dialect;
   e.dialect_origin = run.dialect_origin;
@@ -440,20 +448,42 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                                        scan.setups.starts(), scan.commands, e);
   t = Clock::now();
   // Interpret again, plan and fold as one stream: each command goes through as soon as the
-  // planner has timed it, so memory holds the look-ahead window, not the program.
+  // planner has timed it, so memory holds the look-ahead window, not the program. The three run
+  // at once, the interpreter and the planner each on a thread of its own and the folding
+  // (removal, energy) here, handing commands on in order (stage_queue.hpp).
   InterpreterOptions again = interpreter;
   again.dialect = e.dialect;      // as the first pass chose it
   again.keep_diagnostics = false; // the first pass gave them
   std::size_t streamed = 0;
+  struct Timed {
+    CanonCommand command;
+    TimedCommand timed;
+  };
   try {
-    Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& timed) {
-      folder.take(c, std::move(timed));
-      ++streamed;
-    });
-    estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
-    interpret(source, again, [&](const CanonCommand& c) { planner.add(view.view(c)); });
-    const double total_s = planner.finish();
-    add_diagnostics(e, planner.take_diagnostics(), source.path);
+    double total_s = 0;
+    std::vector<Diagnostic> planner_diagnostics;
+    estimate_detail::run_overlapped<Timed>(
+        options.overlap_stages,
+        [&](estimate_detail::StageQueue<Timed>& timed) {
+          Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& t) {
+            timed.push({c, std::move(t)});
+          });
+          estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
+          estimate_detail::run_overlapped<CanonCommand>(
+              options.overlap_stages,
+              [&](estimate_detail::StageQueue<CanonCommand>& commands) {
+                interpret(source, again,
+                          [&](const CanonCommand& c) { commands.push(view.view(c)); });
+              },
+              [&](const CanonCommand& c) { planner.add(c); });
+          total_s = planner.finish();
+          planner_diagnostics = planner.take_diagnostics();
+        },
+        [&](Timed& t) {
+          folder.take(t.command, std::move(t.timed));
+          ++streamed;
+        });
+    add_diagnostics(e, std::move(planner_diagnostics), source.path);
     folder.finish(total_s);
   } catch (const std::exception& ex) {
     e.diagnostics.push_back(

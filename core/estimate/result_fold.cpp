@@ -43,8 +43,8 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
                            std::vector<RemovalSimulator*> removals, SetupIndex setups,
                            const std::vector<SetupStart>& starts, std::size_t expected_commands,
                            Estimate& out)
-    : source_(source), dialect_(dialect), power_constants_(power), options_(options),
-      removals_(std::move(removals)), setups_(std::move(setups)), out_(out),
+    : source_(source), dialect_(dialect), power_constants_(power), evaluate_power_(power),
+      options_(options), removals_(std::move(removals)), setups_(std::move(setups)), out_(out),
       expected_commands_(expected_commands), lines_(source.lines.size()),
       energy_(power, options.energy), operations_(source, dialect) {
   for (const SetupStart& start : starts)
@@ -204,8 +204,8 @@ void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& 
   const bool move = is_move(command.kind);
   for (const OperatingSegment& seg : segments) {
     if (!(seg.t1_s > seg.t0_s)) continue; // instants draw nothing
-    const double p0 = component_sum(component_power_w(power_constants_, seg.start));
-    const double p1 = component_sum(component_power_w(power_constants_, seg.end));
+    const double p0 = component_sum(evaluate_power_(seg.start));
+    const double p1 = component_sum(evaluate_power_(seg.end));
     power_.add(seg.t0_s, p0);
     power_.add(seg.t1_s, p1);
     mrr_.add(seg.t0_s, seg.start.mrr_mm3_s);
@@ -220,7 +220,7 @@ void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& 
       ++s;
     if (segments.empty()) return std::pair{0.0, 0.0};
     const OperatingPoint& p = segments[s].end;
-    return std::pair{component_sum(component_power_w(power_constants_, p)), p.mrr_mm3_s};
+    return std::pair{component_sum(evaluate_power_(p)), p.mrr_mm3_s};
   };
   auto add = [&](const Pose& at, double t) {
     const auto [power, mrr] = power_at(t);

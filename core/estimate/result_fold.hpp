@@ -44,6 +44,7 @@ private:
   const SourceFile& source_;
   const Dialect& dialect_;
   const PowerConstants& power_constants_;
+  const PowerEvaluator evaluate_power_; // of power_constants_
   const EstimateOptions& options_;
   // Removes a batch's commands [from, to) with the setups' simulators.
   void remove(std::size_t from, std::size_t to);

@@ -26,7 +26,7 @@ bool Interpreter::evaluate_words(const Block& b, BlockValues& v) {
       ok = false;
       continue;
     }
-    const char up = char(std::toupper(w.letter));
+    const char up = w.letter >= 'a' && w.letter <= 'z' ? char(w.letter - 'a' + 'A') : w.letter;
     if (w.letter == 'g' || w.letter == 'm') {
       const double scaled = value * 10.0;
       const double r = std::round(scaled);

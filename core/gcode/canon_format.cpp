@@ -1,145 +1,205 @@
 // Printing canonical commands in the form of LinuxCNC's `rs274 -g`, in program units.
-#include <charconv>
-#include <cstdio>
+#include <cstring>
+#include <string>
+#include <string_view>
 
+#include "ncjoule/fixed_text.hpp"
 #include "ncjoule/gcode.hpp"
 
 namespace ncjoule {
 namespace {
 
-std::string printf_string(const char* format, auto... args) {
-  char buffer[256];
-  const int n = std::snprintf(buffer, sizeof buffer, format, args...);
-  if (n < 0) return {};
-  if (std::size_t(n) < sizeof buffer) return std::string(buffer, std::size_t(n));
-  // Long output (values near 1e300 print hundreds of digits): size it exactly.
-  std::string out(std::size_t(n), '\0');
-  std::snprintf(out.data(), out.size() + 1, format, args...);
-  return out;
-}
-
-// Appends "%.4f" of each value, separated by ", ". to_chars rounds exactly as printf does, and
-// is several times faster: moves are most of a program, and `ncjoule canon` prints every one.
+// Appends "%.4f" of each value, separated by ", " (fixed_text.hpp writes what printf would).
 void append_fixed4(std::string& out, std::initializer_list<double> values) {
   bool first = true;
   for (const double v : values) {
     if (!first) out += ", ";
     first = false;
-    char buffer[64];
-    const auto r = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::fixed, 4);
-    if (r.ec == std::errc())
-      out.append(buffer, r.ptr);
-    else
-      out += printf_string("%.4f", v);
+    append_fixed(out, v, 4);
   }
 }
 
-// NAME(x, y, z, a, b, c) of a straight move, in program units.
-std::string straight_line(const char* name, const Pose& e, double u) {
-  std::string out;
-  out.reserve(96);
+// The same into a buffer with room for them; nullptr when a value is one only printf writes.
+char* put_fixed4(char* p, std::initializer_list<double> values) {
+  bool first = true;
+  for (const double v : values) {
+    if (!first) *p++ = ',', *p++ = ' ';
+    first = false;
+    p = write_fixed_fast(p, v, 4);
+    if (!p) return nullptr;
+  }
+  return p;
+}
+
+char* put_text(char* p, std::string_view text) {
+  std::memcpy(p, text.data(), text.size());
+  return p + text.size();
+}
+
+// Room for a move's line: a name, ten numbers and a rotation.
+constexpr std::size_t kLineRoom = 64 + 10 * (kFixedFastChars + 2) + 16;
+
+// NAME(v, v, ...) with each value in "%.4f". Moves are most of a program, and `ncjoule canon`
+// prints every one: the line is made in a buffer and appended once.
+void append_call(std::string& out, std::string_view name, std::initializer_list<double> values) {
+  char buffer[kLineRoom];
+  char* p = put_text(buffer, name);
+  *p++ = '(';
+  if ((p = put_fixed4(p, values))) {
+    *p++ = ')';
+    out.append(buffer, std::size_t(p - buffer));
+    return;
+  }
   out += name;
   out += '(';
-  append_fixed4(out, {e.x / u, e.y / u, e.z / u, e.a, e.b, e.c});
+  append_fixed4(out, values);
   out += ')';
-  return out;
+}
+
+// NAME(x, y, z, a, b, c) of a straight move, in program units.
+void straight_line(std::string& out, std::string_view name, const Pose& e, double u) {
+  append_call(out, name, {e.x / u, e.y / u, e.z / u, e.a, e.b, e.c});
+}
+
+// ARC_FEED(first, second, centre first, centre second, rotation, normal, a, b, c).
+void arc_line(std::string& out, const CanonCommand& c, double u) {
+  const Pose& e = c.end;
+  double first = e.x, second = e.y, normal = e.z;
+  if (c.plane == Plane::YZ) first = e.y, second = e.z, normal = e.x;
+  if (c.plane == Plane::XZ) first = e.z, second = e.x, normal = e.y;
+  const std::string rotation = std::to_string(c.rotation);
+  char buffer[kLineRoom];
+  char* p = put_text(buffer, "ARC_FEED(");
+  if ((p = put_fixed4(p, {first / u, second / u, c.centre_first / u, c.centre_second / u}))) {
+    p = put_text(p, ", ");
+    p = put_text(p, rotation);
+    p = put_text(p, ", ");
+    if ((p = put_fixed4(p, {normal / u, e.a, e.b, e.c}))) {
+      *p++ = ')';
+      out.append(buffer, std::size_t(p - buffer));
+      return;
+    }
+  }
+  out += "ARC_FEED(";
+  append_fixed4(out, {first / u, second / u, c.centre_first / u, c.centre_second / u});
+  out += ", " + rotation + ", ";
+  append_fixed4(out, {normal / u, e.a, e.b, e.c});
+  out += ')';
 }
 
 } // namespace
 
-std::string format_canon(const CanonCommand& c) {
+void append_canon(std::string& out, const CanonCommand& c) {
   const double u = c.state.inch ? 25.4 : 1.0;
   const Pose& e = c.end;
   switch (c.kind) {
   case CanonKind::Traverse:
-    return straight_line("STRAIGHT_TRAVERSE", e, u);
+    return straight_line(out, "STRAIGHT_TRAVERSE", e, u);
   case CanonKind::Feed:
-    if (c.text == "rigid tap")
-      return printf_string("RIGID_TAP(%.4f, %.4f, %.4f)", e.x / u, e.y / u, e.z / u);
-    if (c.text == "rigid tap retract") return {};
-    return straight_line("STRAIGHT_FEED", e, u);
+    if (c.text == "rigid tap") return append_call(out, "RIGID_TAP", {e.x / u, e.y / u, e.z / u});
+    if (c.text == "rigid tap retract") return;
+    return straight_line(out, "STRAIGHT_FEED", e, u);
   case CanonKind::Probe:
-    return straight_line("STRAIGHT_PROBE", e, u);
-  case CanonKind::Arc: {
-    double first = e.x, second = e.y, normal = e.z;
-    if (c.plane == Plane::YZ) first = e.y, second = e.z, normal = e.x;
-    if (c.plane == Plane::XZ) first = e.z, second = e.x, normal = e.y;
-    std::string out = "ARC_FEED(";
-    out.reserve(128);
-    append_fixed4(out, {first / u, second / u, c.centre_first / u, c.centre_second / u});
-    out += ", ";
-    out += std::to_string(c.rotation);
-    out += ", ";
-    append_fixed4(out, {normal / u, e.a, e.b, e.c});
-    out += ')';
-    return out;
-  }
+    return straight_line(out, "STRAIGHT_PROBE", e, u);
+  case CanonKind::Arc:
+    return arc_line(out, c, u);
   case CanonKind::Dwell:
-    return printf_string("DWELL(%.4f)", c.value);
+    return append_call(out, "DWELL", {c.value});
   case CanonKind::SelectTool:
-    return printf_string("SELECT_TOOL(%d)", int(c.value));
+    out += "SELECT_TOOL(" + std::to_string(int(c.value)) + ")";
+    return;
   case CanonKind::ChangeTool:
-    return printf_string("CHANGE_TOOL(%d)", int(c.value));
+    out += "CHANGE_TOOL(" + std::to_string(int(c.value)) + ")";
+    return;
   case CanonKind::SetFeedRate:
-    return printf_string("SET_FEED_RATE(%.4f)", c.value);
+    return append_call(out, "SET_FEED_RATE", {c.value});
   case CanonKind::SetFeedMode:
-    return printf_string("SET_FEED_MODE(0, %d)", c.state.feed_mode == FeedMode::InverseTime ? 1
-                                                 : c.state.feed_mode == FeedMode::UnitsPerRevolution
-                                                     ? 2
-                                                     : 0);
+    out += c.state.feed_mode == FeedMode::InverseTime          ? "SET_FEED_MODE(0, 1)"
+           : c.state.feed_mode == FeedMode::UnitsPerRevolution ? "SET_FEED_MODE(0, 2)"
+                                                               : "SET_FEED_MODE(0, 0)";
+    return;
   case CanonKind::SpindleSpeed:
-    return printf_string("SET_SPINDLE_SPEED(0, %.4f)", c.value);
+    out += "SET_SPINDLE_SPEED(0, ";
+    append_fixed(out, c.value, 4);
+    out += ')';
+    return;
   case CanonKind::SpindleClockwise:
-    return "START_SPINDLE_CLOCKWISE(0)";
+    out += "START_SPINDLE_CLOCKWISE(0)";
+    return;
   case CanonKind::SpindleCounterClockwise:
-    return "START_SPINDLE_COUNTERCLOCKWISE(0)";
+    out += "START_SPINDLE_COUNTERCLOCKWISE(0)";
+    return;
   case CanonKind::SpindleStop:
-    return "STOP_SPINDLE_TURNING(0)";
+    out += "STOP_SPINDLE_TURNING(0)";
+    return;
   case CanonKind::MistOn:
-    return "MIST_ON()";
+    out += "MIST_ON()";
+    return;
   case CanonKind::FloodOn:
-    return "FLOOD_ON()";
+    out += "FLOOD_ON()";
+    return;
   case CanonKind::MistOff:
-    return "MIST_OFF()";
+    out += "MIST_OFF()";
+    return;
   case CanonKind::FloodOff:
-    return "FLOOD_OFF()";
+    out += "FLOOD_OFF()";
+    return;
   case CanonKind::LengthUnits:
-    return c.state.inch ? "USE_LENGTH_UNITS(CANON_UNITS_INCHES)"
-                        : "USE_LENGTH_UNITS(CANON_UNITS_MM)";
+    out +=
+        c.state.inch ? "USE_LENGTH_UNITS(CANON_UNITS_INCHES)" : "USE_LENGTH_UNITS(CANON_UNITS_MM)";
+    return;
   case CanonKind::PlaneSelect:
-    return c.state.plane == Plane::XY   ? "SELECT_PLANE(CANON_PLANE_XY)"
+    out += c.state.plane == Plane::XY   ? "SELECT_PLANE(CANON_PLANE_XY)"
            : c.state.plane == Plane::YZ ? "SELECT_PLANE(CANON_PLANE_YZ)"
                                         : "SELECT_PLANE(CANON_PLANE_XZ)";
+    return;
   case CanonKind::PathControl:
-    if (c.state.path_mode == PathMode::Continuous)
-      return printf_string("SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, %f)",
-                           c.state.path_tolerance / u);
-    return c.state.path_mode == PathMode::ExactPath ? "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)"
+    if (c.state.path_mode == PathMode::Continuous) {
+      out += "SET_MOTION_CONTROL_MODE(CANON_CONTINUOUS, ";
+      append_fixed(out, c.state.path_tolerance / u, 6); // rs274 prints it with "%f"
+      out += ')';
+      return;
+    }
+    out += c.state.path_mode == PathMode::ExactPath ? "SET_MOTION_CONTROL_MODE(CANON_EXACT_PATH)"
                                                     : "SET_MOTION_CONTROL_MODE(CANON_EXACT_STOP)";
+    return;
   case CanonKind::ToolLengthOffset:
-    return printf_string("USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 %.4f, 0.0000 0.0000 0.0000, "
-                         "0.0000 0.0000 0.0000)",
-                         c.value / u);
+    out += "USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 ";
+    append_fixed(out, c.value / u, 4);
+    out += ", 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)";
+    return;
   case CanonKind::WorkOffset:
-    return printf_string("SET_G5X_OFFSET(%d, %.4f, %.4f, %.4f, %.4f, %.4f, %.4f)", int(c.value),
-                         e.x / u, e.y / u, e.z / u, e.a, e.b, e.c);
+    out += "SET_G5X_OFFSET(" + std::to_string(int(c.value)) + ", ";
+    append_fixed4(out, {e.x / u, e.y / u, e.z / u, e.a, e.b, e.c});
+    out += ')';
+    return;
   case CanonKind::AxisOffset:
-    return printf_string("SET_G92_OFFSET(%.4f, %.4f, %.4f, %.4f, %.4f, %.4f)", e.x / u, e.y / u,
-                         e.z / u, e.a, e.b, e.c);
+    return append_call(out, "SET_G92_OFFSET", {e.x / u, e.y / u, e.z / u, e.a, e.b, e.c});
   case CanonKind::ProgramStop:
-    return "PROGRAM_STOP()";
+    out += "PROGRAM_STOP()";
+    return;
   case CanonKind::OptionalStop:
-    return "OPTIONAL_PROGRAM_STOP()";
+    out += "OPTIONAL_PROGRAM_STOP()";
+    return;
   case CanonKind::ProgramEnd:
-    return "PROGRAM_END()";
+    out += "PROGRAM_END()";
+    return;
   case CanonKind::Message:
-    return "MESSAGE(\"" + c.text + "\")";
+    out += "MESSAGE(\"" + c.text + "\")";
+    return;
   case CanonKind::Comment:
-    return "COMMENT(\"" + c.text + "\")";
+    out += "COMMENT(\"" + c.text + "\")";
+    return;
   case CanonKind::PlannerHint:
-    return "COMMENT(\"planner hint: " + c.text + "\")";
+    out += "COMMENT(\"planner hint: " + c.text + "\")";
+    return;
   }
-  return {};
+}
+
+std::string format_canon(const CanonCommand& c) {
+  std::string out;
+  append_canon(out, c);
+  return out;
 }
 
 } // namespace ncjoule

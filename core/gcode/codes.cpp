@@ -102,13 +102,6 @@ std::string g_name(int code) {
   return s;
 }
 
-bool has_g(const BlockValues& v, int code) {
-  return std::find(v.g.begin(), v.g.end(), code) != v.g.end();
-}
-bool has_m(const BlockValues& v, int code) {
-  return std::find(v.m.begin(), v.m.end(), code) != v.m.end();
-}
-
 // Codes that change only how a controller blends or smooths the path: kept as planner hints.
 // - Haas G187 P1/P2/P3 E<tol> (Haas Mill Operator's Manual, "G187 Accuracy Control"): rough,
 //   medium or finish smoothing, E the corner rounding tolerance.

@@ -10,6 +10,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <numbers>
 #include <utility>
@@ -352,27 +353,69 @@ private:
 
 } // namespace
 
+namespace {
+
+// Clinger's fast path: digits that fit a double's mantissa exactly (below 2^53), divided by a
+// power of ten that is itself exact (up to 1e22), give the correctly rounded value in one
+// division, the value from_chars gives. Nearly every word of a program is such a number
+// ("X12.345"); the rest go to from_chars. False when the text is not digits with at most one
+// point; `done` false when it is but lies outside the fast path.
+bool parse_decimal_fast(const char* first, const char* last, double& value, bool& done) {
+  static constexpr double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                            1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  constexpr std::uint64_t kExact = std::uint64_t(1) << 53;
+  std::uint64_t mantissa = 0;
+  int decimals = 0;
+  bool point = false, digits = false, exact = true;
+  for (const char* c = first; c != last; ++c) {
+    if (*c == '.') {
+      if (point) return false;
+      point = true;
+      continue;
+    }
+    if (*c < '0' || *c > '9') return false;
+    digits = true;
+    if (point) ++decimals;
+    // Past 2^53 / 10 another digit may overflow what a double holds: from_chars reads it.
+    if (mantissa >= kExact / 10) exact = false;
+    if (exact) mantissa = mantissa * 10 + std::uint64_t(*c - '0');
+  }
+  if (!digits) return false;
+  done = exact && decimals <= 22;
+  if (done) value = double(mantissa) / kPowersOfTen[decimals];
+  return true;
+}
+
+} // namespace
+
 bool parse_plain_number(std::string_view t, double& value) {
   if (t.empty()) return false;
   bool negative = false;
   std::size_t i = 0;
   if (t[0] == '-' || t[0] == '+') negative = t[0] == '-', i = 1;
   if (i >= t.size()) return false;
-  // from_chars rejects a leading '.', which G-code allows (".5"): parse the two halves.
   const char* first = t.data() + i;
   const char* last = t.data() + t.size();
-  for (const char* c = first; c != last; ++c)
-    if (!((*c >= '0' && *c <= '9') || *c == '.')) return false;
   double v = 0;
-  if (*first == '.') {
-    if (last - first == 1) return false;
-    std::string tmp = "0";
-    tmp.append(first, last);
-    auto r = std::from_chars(tmp.data(), tmp.data() + tmp.size(), v);
-    if (r.ec != std::errc() || r.ptr != tmp.data() + tmp.size()) return false;
-  } else {
-    auto r = std::from_chars(first, last, v);
-    if (r.ec != std::errc() || r.ptr != last) return false;
+  bool done = false;
+  if (!parse_decimal_fast(first, last, v, done)) {
+    // Not digits with at most one point; from_chars is left to say so for a second point.
+    for (const char* c = first; c != last; ++c)
+      if (!((*c >= '0' && *c <= '9') || *c == '.')) return false;
+  }
+  if (!done) {
+    // from_chars rejects a leading '.', which G-code allows (".5"): parse the two halves.
+    if (*first == '.') {
+      if (last - first == 1) return false;
+      std::string tmp = "0";
+      tmp.append(first, last);
+      auto r = std::from_chars(tmp.data(), tmp.data() + tmp.size(), v);
+      if (r.ec != std::errc() || r.ptr != tmp.data() + tmp.size()) return false;
+    } else {
+      auto r = std::from_chars(first, last, v);
+      if (r.ec != std::errc() || r.ptr != last) return false;
+    }
   }
   value = negative ? -v : v;
   return true;

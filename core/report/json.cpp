@@ -104,6 +104,78 @@ void write_block(JsonWriter& w, const LineSummary& b, const Estimate& e) {
   w.end_object();
 }
 
+// The compact document's block columns: write_block's fields in its order, the components
+// flattened, and for what write_block leaves out (no operation, no spindle load, no note) null.
+constexpr const char* kBlockColumns[] = {"line",
+                                         "kind",
+                                         "operation",
+                                         "time_s",
+                                         "start_s",
+                                         "length_mm",
+                                         "entry_speed_mm_s",
+                                         "exit_speed_mm_s",
+                                         "peak_speed_mm_s",
+                                         "commands",
+                                         "removed_mm3",
+                                         "mrr_mm3_s",
+                                         "mrr_peak_mm3_s",
+                                         "power_w",
+                                         "power_peak_w",
+                                         "energy_j",
+                                         "spindle_load"};
+
+void write_block_row(JsonWriter& w, const LineSummary& b, const Estimate& e) {
+  w.begin_array();
+  w.value(b.line + 1);
+  w.value(line_kind_name(b.kind));
+  if (b.operation > 0 && b.operation <= e.operations.size())
+    w.value(int(b.operation) - 1); // index into "operations"
+  else
+    w.null();
+  w.value(b.time_s);
+  w.value(b.start_s);
+  w.value(b.length_mm);
+  w.value(b.entry_speed_mm_s);
+  w.value(b.exit_speed_mm_s);
+  w.value(b.peak_speed_mm_s);
+  w.value(b.commands);
+  w.value(b.removed_mm3);
+  w.value(b.time_s > 0 ? b.removed_mm3 / b.time_s : 0.0);
+  w.value(b.mrr_peak_mm3_s);
+  w.value(b.time_s > 0 ? b.energy_j / b.time_s : 0.0);
+  w.value(b.power_peak_w);
+  w.value(b.energy_j);
+  if (b.spindle_load > 0)
+    w.value(b.spindle_load);
+  else
+    w.null();
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+    w.value(b.components_j[i]);
+  if (b.note > 0 && b.note <= e.notes.size())
+    w.value(e.notes[b.note - 1]);
+  else
+    w.null();
+  w.end_array();
+}
+
+void write_block_rows(JsonWriter& w, const Estimate& e) {
+  w.begin_object();
+  w.key("columns");
+  w.begin_array();
+  for (const char* name : kBlockColumns)
+    w.value(name);
+  for (std::size_t i = 0; i < kPowerComponentCount; ++i)
+    w.value("components." + std::string(component_name(PowerComponent(i))));
+  w.value("notes");
+  w.end_array();
+  w.key("rows");
+  w.begin_array_of_lines();
+  w.elements(e.lines.size(),
+             [&](JsonWriter& piece, std::size_t i) { write_block_row(piece, e.lines[i], e); });
+  w.end_array();
+  w.end_object();
+}
+
 void write_operation(JsonWriter& w, const OperationSummary& op, bool removal_known) {
   w.begin_object();
   w.field("name", op.name);
@@ -157,8 +229,13 @@ void write_stock_guess(JsonWriter& w, const Estimate& e) {
 
 } // namespace
 
-void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProfile& machine,
-                         int indent) {
+namespace {
+
+// The document; `compact`: on one line but for a line per block, the blocks as rows of values
+// under one list of column names (docs/json.md).
+void write_document(std::ostream& out, const Estimate& e, const MachineProfile& machine, int indent,
+                    bool compact) {
+  if (compact) indent = 0;
   const RemovalResult* removal = e.removal ? &*e.removal : nullptr;
   const EnergyResult& energy = e.energy;
   JsonWriter w(out, indent);
@@ -255,10 +332,14 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
     write_operation(w, op, removal != nullptr);
   w.end_array();
   w.key("blocks");
-  w.begin_array();
-  for (const LineSummary& b : e.lines)
-    write_block(w, b, e);
-  w.end_array();
+  if (compact) {
+    write_block_rows(w, e);
+  } else {
+    w.begin_array();
+    w.elements(e.lines.size(),
+               [&](JsonWriter& piece, std::size_t i) { write_block(piece, e.lines[i], e); });
+    w.end_array();
+  }
   w.key("warnings");
   w.begin_array();
   for (const Diagnostic& d : e.diagnostics) {
@@ -273,7 +354,19 @@ void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProf
   w.end_array();
   w.field("warnings_dropped", e.diagnostics_dropped);
   w.end_object();
-  if (indent > 0) out.put('\n');
+  w.end_document(indent > 0 || compact);
+}
+
+} // namespace
+
+void write_estimate_json(std::ostream& out, const Estimate& e, const MachineProfile& machine,
+                         int indent) {
+  write_document(out, e, machine, indent, false);
+}
+
+void write_estimate_json_compact(std::ostream& out, const Estimate& e,
+                                 const MachineProfile& machine) {
+  write_document(out, e, machine, 0, true);
 }
 
 std::string estimate_json(const Estimate& e, const MachineProfile& machine, int indent) {

@@ -1,33 +1,60 @@
 #include "json_writer.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 namespace ncjoule::report_detail {
 
-JsonWriter::JsonWriter(std::ostream& out, int indent) : out_(out), indent_(indent) {
-  buffer_.reserve(1 << 16);
+JsonWriter::JsonWriter(std::ostream& out, int indent)
+    : out_(&out), buffer_(new char[kBufferSize]), indent_(indent) {}
+
+JsonWriter::JsonWriter(std::string& text, const JsonWriter& parent, bool array_empty)
+    : text_(&text), buffer_(new char[kBufferSize]), indent_(parent.indent_),
+      levels_(parent.levels_), one_line_levels_(parent.one_line_levels_) {
+  levels_.back().empty = array_empty;
 }
 
 JsonWriter::~JsonWriter() {
-  out_.write(buffer_.data(), std::streamsize(buffer_.size()));
+  flush();
 }
 
-void JsonWriter::flush_if_full() {
-  if (buffer_.size() < (1 << 16)) return;
-  out_.write(buffer_.data(), std::streamsize(buffer_.size()));
-  buffer_.clear();
+void JsonWriter::flush() {
+  if (used_ == 0) return;
+  if (out_)
+    out_->write(buffer_.get(), std::streamsize(used_));
+  else
+    text_->append(buffer_.get(), used_);
+  used_ = 0;
+}
+
+void JsonWriter::put(std::string_view text) {
+  if (kBufferSize - used_ < text.size()) {
+    flush();
+    if (text.size() > kBufferSize) { // a long string value: written as it is
+      if (out_)
+        out_->write(text.data(), std::streamsize(text.size()));
+      else
+        text_->append(text);
+      return;
+    }
+  }
+  std::memcpy(buffer_.get() + used_, text.data(), text.size());
+  used_ += text.size();
 }
 
 void JsonWriter::newline() {
   if (indent_ <= 0 || one_line_levels_ > 0) return;
   put('\n');
-  buffer_.append(levels_.size() * std::size_t(indent_), ' ');
+  for (std::size_t n = levels_.size() * std::size_t(indent_); n > 0; --n)
+    put(' ');
 }
 
 void JsonWriter::before_value() {
-  flush_if_full();
   if (after_key_) {
     after_key_ = false;
     return;
@@ -36,17 +63,23 @@ void JsonWriter::before_value() {
   Level& level = levels_.back();
   if (!level.empty) put(',');
   level.empty = false;
-  newline();
+  if (level.lines && one_line_levels_ == 0 && indent_ <= 0)
+    put('\n');
+  else
+    newline();
 }
 
 JsonWriter& JsonWriter::key(std::string_view name) {
   before_value();
   // Keys are names the code chose (plain ASCII): written as they are, not scanned for escapes.
-  put('"');
-  put(name);
-  put('"');
-  put(':');
-  if (indent_ > 0 && one_line_levels_ == 0) put(' ');
+  char* p = room(name.size() + 4);
+  *p++ = '"';
+  std::memcpy(p, name.data(), name.size());
+  p += name.size();
+  *p++ = '"';
+  *p++ = ':';
+  if (indent_ > 0 && one_line_levels_ == 0) *p++ = ' ';
+  used_ = std::size_t(p - buffer_.get());
   after_key_ = true;
   return *this;
 }
@@ -81,34 +114,66 @@ void JsonWriter::end_object() {
   put('}');
 }
 
+void JsonWriter::begin_array_of_lines() {
+  before_value();
+  put('[');
+  levels_.push_back({true, true, false, true});
+}
+
 void JsonWriter::end_array() {
   const bool empty = levels_.back().empty;
+  const bool lines = levels_.back().lines;
   levels_.pop_back();
-  if (!empty) newline();
+  if (!empty && lines && one_line_levels_ == 0 && indent_ <= 0)
+    put('\n');
+  else if (!empty)
+    newline();
   put(']');
 }
+
+namespace {
+
+// Below this, a whole number's shortest form is its digits (to_chars writes 100000 as
+// "1e+05", shorter than its digits).
+constexpr double kWholeDigitsBelow = 100000;
+
+// Writes a whole number of magnitude below kWholeDigitsBelow as to_chars does ("-0" for
+// negative zero) at p; returns the end. Most numbers of an estimate's blocks are 0 (no removal,
+// no coolant, no tool change on most lines), and many are whole.
+char* put_whole(char* p, double number) {
+  if (std::signbit(number)) *p++ = '-';
+  const auto r = std::to_chars(p, p + 8, std::int64_t(std::fabs(number)));
+  return r.ptr;
+}
+
+} // namespace
 
 void JsonWriter::value(double number) {
   if (!std::isfinite(number)) return null();
   before_value();
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, number);
-  put(std::string_view(text, std::size_t(r.ptr - text)));
+  char* p = room(32);
+  if (std::fabs(number) < kWholeDigitsBelow && number == std::trunc(number))
+    p = put_whole(p, number);
+  else
+    p = std::to_chars(p, p + 32, number).ptr;
+  used_ = std::size_t(p - buffer_.get());
 }
 
 void JsonWriter::value(float number) {
   if (!std::isfinite(number)) return null();
   before_value();
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, number);
-  put(std::string_view(text, std::size_t(r.ptr - text)));
+  char* p = room(32);
+  if (std::fabs(number) < float(kWholeDigitsBelow) && number == std::trunc(number))
+    p = put_whole(p, double(number));
+  else
+    p = std::to_chars(p, p + 32, number).ptr;
+  used_ = std::size_t(p - buffer_.get());
 }
 
 void JsonWriter::value(std::int64_t number) {
   before_value();
-  char text[32];
-  const auto r = std::to_chars(text, text + sizeof text, number);
-  put(std::string_view(text, std::size_t(r.ptr - text)));
+  char* p = room(32);
+  used_ = std::size_t(std::to_chars(p, p + 32, number).ptr - buffer_.get());
 }
 
 void JsonWriter::value(std::string_view text) {
@@ -124,6 +189,37 @@ void JsonWriter::value(bool flag) {
 void JsonWriter::null() {
   before_value();
   put("null");
+}
+
+void JsonWriter::elements(std::size_t count,
+                          const std::function<void(JsonWriter&, std::size_t)>& element) {
+  // Pieces of a few hundred kB of text; at most a few per core in memory at a time.
+  constexpr std::size_t kPiece = 512;
+  const std::size_t pieces = (count + kPiece - 1) / kPiece;
+  const bool was_empty = levels_.back().empty;
+  flush(); // the pieces' text follows what is written so far
+  std::size_t next = 0;
+  const auto live = std::size_t(2 * tbb::this_task_arena::max_concurrency());
+  tbb::parallel_pipeline(
+      live, tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                                [&](tbb::flow_control& control) -> std::size_t {
+                                                  if (next == pieces) control.stop();
+                                                  return next++;
+                                                }) &
+                tbb::make_filter<std::size_t, std::string>(
+                    tbb::filter_mode::parallel,
+                    [&](std::size_t piece) {
+                      std::string text;
+                      JsonWriter w(text, *this, was_empty && piece == 0);
+                      const std::size_t end = std::min(count, (piece + 1) * kPiece);
+                      for (std::size_t i = piece * kPiece; i < end; ++i)
+                        element(w, i);
+                      w.flush();
+                      return text;
+                    }) &
+                tbb::make_filter<std::string, void>(tbb::filter_mode::serial_in_order,
+                                                    [&](const std::string& text) { put(text); }));
+  if (count > 0) levels_.back().empty = false;
 }
 
 namespace {

@@ -4,7 +4,10 @@
 // shortest form that reads back to the same float); non-finite numbers are written as null.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -26,6 +29,9 @@ public:
   void begin_object_on_one_line();
   void end_object();
   void begin_array();
+  // An array whose elements each start on a line of their own, indented or not (the rows of
+  // the compact document: a client can read them line by line).
+  void begin_array_of_lines();
   void end_array();
   // The key of the next value, inside an object: a name of plain ASCII, written unescaped.
   JsonWriter& key(std::string_view name);
@@ -41,27 +47,56 @@ public:
   void value(bool flag);
   void null();
 
+  // Ends the document, with a newline when `newline`. Written through the buffer, in order: a
+  // newline put on the stream itself went out before the text still buffered (the start of a
+  // small document, or inside a block of a large one).
+  void end_document(bool newline) {
+    if (newline) put('\n');
+  }
+
   template <class T> void field(std::string_view name, const T& v) {
     key(name);
     value(v);
   }
 
-private:
-  void before_value();
-  void newline();
-  void write_string(std::string_view text);
-  void put(char c) { buffer_.push_back(c); }
-  void put(std::string_view text) { buffer_.append(text); }
-  void flush_if_full();
+  // Writes `count` elements of the array open now, element(writer, i) writing the i-th, the
+  // same bytes as writing them one after another here: pieces of elements are made on all cores
+  // (TBB) into text of their own and written in order, a few pieces in memory at a time. For the
+  // blocks of a large program, where formatting numbers is most of the time.
+  void elements(std::size_t count, const std::function<void(JsonWriter&, std::size_t)>& element);
 
-  std::ostream& out_;
-  std::string buffer_; // written to out_ in large pieces: a stream write per character is slow
-  int indent_;
+private:
   struct Level {
     bool array = false;
     bool empty = true;
     bool one_line = false;
+    bool lines = false; // each element on a line of its own (begin_array_of_lines)
   };
+  // A writer into `text`, continuing `parent`'s document inside its open array.
+  JsonWriter(std::string& text, const JsonWriter& parent, bool array_empty);
+
+  void before_value();
+  void newline();
+  void write_string(std::string_view text);
+  void put(char c) {
+    if (used_ == kBufferSize) flush();
+    buffer_[used_++] = c;
+  }
+  void put(std::string_view text);
+  // Room for `n` more characters in the buffer (n <= kBufferSize), flushing it if needed.
+  char* room(std::size_t n) {
+    if (kBufferSize - used_ < n) flush();
+    return buffer_.get() + used_;
+  }
+  void flush();
+
+  static constexpr std::size_t kBufferSize = std::size_t(1) << 16;
+  std::ostream* out_ = nullptr; // where the text goes: a stream,
+  std::string* text_ = nullptr; // or a string (a piece of elements())
+  // Written out in large pieces: a stream write per character is slow.
+  std::unique_ptr<char[]> buffer_;
+  std::size_t used_ = 0;
+  int indent_;
   std::vector<Level> levels_;
   int one_line_levels_ = 0; // open levels written on one line (newlines off inside them)
   bool after_key_ = false;

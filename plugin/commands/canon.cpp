@@ -18,6 +18,21 @@ struct CanonOptions {
   bool parse_only = false;
 };
 
+// rs274's "%5ld N..... " before each line: the sequence number right-aligned in five columns.
+void append_sequence(std::string& out, long sequence) {
+  char buffer[32];
+  char* const end = buffer + sizeof buffer;
+  char* p = end;
+  do {
+    *--p = char('0' + sequence % 10);
+    sequence /= 10;
+  } while (sequence > 0);
+  while (end - p < 5)
+    *--p = ' ';
+  out.append(p, std::size_t(end - p));
+  out += " N..... ";
+}
+
 int run_canon(const CanonOptions& o) {
   auto source = read_source(o.file);
   if (!source) return kInputError;
@@ -34,17 +49,29 @@ int run_canon(const CanonOptions& o) {
     options.tools = parse_tool_table(*table, o.tool_units == "inch", diagnostics);
     print_diagnostics(diagnostics);
   }
-  // Output goes through one large stdio buffer: a million-block program prints in seconds.
-  static char buffer[1 << 16];
-  std::setvbuf(stdout, buffer, _IOFBF, sizeof buffer);
+  // Lines are made in one buffer and written in large pieces: a million-block program prints
+  // in a second, where a printf per line took most of the run.
+  std::string lines;
+  lines.reserve(1 << 17);
   long sequence = 0;
   InterpretResult result = interpret(*source, options, [&](const CanonCommand& c) {
     if (o.parse_only) return;
-    std::string text = format_canon(c);
-    if (text.empty()) return;
+    const std::size_t start = lines.size();
+    append_sequence(lines, sequence + 1);
+    const std::size_t text_start = lines.size();
+    append_canon(lines, c);
+    if (lines.size() == text_start) { // a command rs274 prints no line for
+      lines.resize(start);
+      return;
+    }
     ++sequence;
-    std::fprintf(stdout, "%5ld N..... %s\n", sequence, text.c_str());
+    lines += '\n';
+    if (lines.size() >= (1 << 16)) {
+      std::fwrite(lines.data(), 1, lines.size(), stdout);
+      lines.clear();
+    }
   });
+  std::fwrite(lines.data(), 1, lines.size(), stdout);
   std::fflush(stdout);
   print_diagnostics(result.diagnostics);
   for (const Diagnostic& d : result.diagnostics)

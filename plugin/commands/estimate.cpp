@@ -1,6 +1,6 @@
-// `ncjoule estimate FILE --machine PROFILE [--dialect NAME] [--json | --csv]`: interprets the
-// program, plans it on the machine, and prints its time, energy and cost in total, by component
-// and by operation (docs/json.md describes the JSON form, docs/report.md the CSV).
+// `ncjoule estimate FILE --machine PROFILE [--dialect NAME] [--json | --json-compact | --csv]`:
+// interprets the program, plans it on the machine, and prints its time, energy and cost in total,
+// by component and by operation (docs/json.md describes the JSON form, docs/report.md the CSV).
 //
 // The pipeline is estimate_program() (core/estimate) and the JSON is estimate_json()
 // (core/report); this file turns options into calls and prints.
@@ -31,6 +31,7 @@ struct EstimateCliOptions {
   std::string file;
   EstimateSettings settings;
   bool json = false;
+  bool json_compact = false;
   bool csv = false;
 };
 
@@ -167,6 +168,8 @@ int run_estimate(const EstimateCliOptions& o) {
   }
   if (o.json) {
     write_estimate_json(std::cout, e, machine);
+  } else if (o.json_compact) {
+    write_estimate_json_compact(std::cout, e, machine);
   } else if (o.csv) {
     write_estimate_csv(std::cout, e);
   } else {
@@ -211,9 +214,15 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   add_estimate_settings(*cmd, options->settings);
   auto* json = cmd->add_flag("--json", options->json,
                              "Print the totals, operations and every block as JSON (docs/json.md)");
+  auto* json_compact = cmd->add_flag(
+      "--json-compact", options->json_compact,
+      "Print the same JSON made for large programs: no indentation, the blocks as rows of "
+      "values under one list of column names, a row per line (docs/json.md)");
+  json_compact->excludes(json);
   cmd->add_flag("--csv", options->csv,
                 "Print one CSV row per block, with a header row (docs/report.md)")
-      ->excludes(json);
+      ->excludes(json)
+      ->excludes(json_compact);
   cmd->callback([options, &exit_code] { exit_code = run_estimate(*options); });
 });
 

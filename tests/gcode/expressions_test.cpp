@@ -2,7 +2,10 @@
 // same expression.
 #include <doctest/doctest.h>
 
+#include <charconv>
 #include <cmath>
+#include <random>
+#include <string>
 
 #include "expression.hpp"
 #include "program_runner.hpp"
@@ -136,4 +139,37 @@ TEST_CASE("brackets nest up to the limit, and a level more is an error with its 
   CHECK(e[0].line == 2);
   CHECK(e[0].column == 4);
   CHECK(e[0].message.find("nested more than 128 brackets deep") != std::string::npos);
+}
+
+TEST_CASE("plain numbers read to the same double from_chars gives, in every form a word takes") {
+  // Short decimals take a fast path: each must equal the correctly rounded value.
+  std::mt19937_64 random(43);
+  int checked = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const int whole_digits = int(random() % 10), fraction_digits = int(random() % 25);
+    std::string text;
+    for (int k = 0; k < whole_digits; ++k)
+      text += char('0' + random() % 10);
+    if (fraction_digits > 0 || whole_digits == 0) text += '.';
+    for (int k = 0; k < fraction_digits; ++k)
+      text += char('0' + random() % 10);
+    if (text == ".") continue;
+    const std::string whole = text.front() == '.' ? "0" + text : text;
+    double expected = 0, got = -1;
+    std::from_chars(whole.data(), whole.data() + whole.size(), expected);
+    REQUIRE(detail::parse_plain_number(text, got));
+    if (got != expected) FAIL_CHECK(text);
+    const std::string negative = "-" + text;
+    REQUIRE(detail::parse_plain_number(negative, got));
+    if (got != -expected || !std::signbit(got)) FAIL_CHECK(negative);
+    ++checked;
+  }
+  CHECK(checked > 90000);
+  double v = 0;
+  CHECK(detail::parse_plain_number("9007199254740993", v)); // past 2^53: from_chars reads it
+  CHECK(v == 9007199254740992.0);
+  CHECK(detail::parse_plain_number("-0", v));
+  CHECK(std::signbit(v));
+  for (const char* bad : {"", ".", "-", "+", "1.2.3", "1e5", "12a", "-.", " 1"})
+    CHECK_FALSE(detail::parse_plain_number(bad, v));
 }

@@ -68,6 +68,10 @@ struct EstimateOptions {
   std::size_t max_samples_per_move = 100'000;
   // Moves the planner gathers before it looks ahead (PlanOptions::look_ahead_batch).
   std::size_t look_ahead_batch = 64;
+  // The interpreter, the planner and the folding of results (removal, energy) run at once, each
+  // on a thread of its own, handing commands on in order; false: one after the other on the
+  // calling thread. The numbers are the same either way (tests compare the two).
+  bool overlap_stages = true;
 };
 
 // A job file (TOML) says what a program is cut from and with:

@@ -386,5 +386,7 @@ Toolpath interpret(const SourceFile& source, const InterpreterOptions& options =
 // Prints one command the way `rs274 -g` does (without its leading sequence number and N
 // column), in program units with 4 decimals; empty for commands rs274 has no line for.
 std::string format_canon(const CanonCommand& command);
+// The same, appended to `out` (nothing for commands rs274 has no line for).
+void append_canon(std::string& out, const CanonCommand& command);
 
 } // namespace ncjoule

@@ -26,6 +26,11 @@ namespace ncjoule {
 void write_estimate_json(std::ostream& out, const Estimate& estimate, const MachineProfile& machine,
                          int indent = 1);
 std::string estimate_json(const Estimate& estimate, const MachineProfile& machine, int indent = 1);
+// The same document made for large programs (docs/json.md, "Compact form"): no indentation, and
+// "blocks" as {"columns": [names], "rows": [[values], ...]} with each row on a line of its own,
+// the numbers the same as write_estimate_json's, byte for byte.
+void write_estimate_json_compact(std::ostream& out, const Estimate& estimate,
+                                 const MachineProfile& machine);
 
 // One CSV row per block (LineSummary), with a header row; columns in docs/report.md. Numbers are
 // written in the shortest form that reads back to the same value.

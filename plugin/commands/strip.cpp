@@ -39,15 +39,11 @@ int run_strip(const StripCliOptions& o) {
   const std::string text = strip(input->text);
   // A file without annotations is left alone, so that its time stamp does not change.
   if (o.in_place && text == input->text) return kOk;
-  // Stripping takes no time to speak of: only a writer that came or a change since the read
-  // are looked for, not a quiet period.
-  if (o.in_place) {
-    if (const std::string why = in_place_changed(o.file, stamp, true); !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
-      return kOutputError;
-    }
-  }
-  return write_program(o.file, o.output, o.in_place, text);
+  // Replacing in place: checked again once the new text is on disk, right before the rename.
+  // Stripping takes no time to speak of: only a writer that came or a change since the read are
+  // looked for, not a quiet period.
+  const InPlaceCheck check{stamp, true};
+  return write_program(o.file, o.output, o.in_place ? &check : nullptr, text);
 }
 
 const Registration registration([](CLI::App& app, int& exit_code) {

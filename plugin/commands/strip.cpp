@@ -36,7 +36,13 @@ int run_strip(const StripCliOptions& o) {
   }
   const auto input = read_source(o.file, std::size_t(o.input_limit_mib * 1024 * 1024));
   if (!input) return kInputError;
-  const std::string text = strip(input->text);
+  const StripResult stripped = strip_checked(input->text);
+  const std::string& text = stripped.text;
+  if (stripped.by_form)
+    std::cerr << "ncjoule: " << printable(input->path)
+              << ": its annotations no longer match the seal in its header (edited since it was "
+                 "annotated, or the header deleted): every comment in the annotations' form was "
+                 "taken out, a note of that form added since too\n";
   // A file without annotations is left alone, so that its time stamp does not change.
   if (o.in_place && text == input->text) return kOk;
   // Replacing in place: checked again once the new text is on disk, right before the rename.

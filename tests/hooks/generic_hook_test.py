@@ -47,7 +47,7 @@ def read(path):
 
 
 def annotated(data):
-    return re.search(rb"[(;]NCJ [^\n]* CK=", data, re.I) is not None
+    return re.search(rb"[(;]NCJ SEAL LINES=", data, re.I) is not None
 
 
 def strip(path):

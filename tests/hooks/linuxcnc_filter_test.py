@@ -53,7 +53,7 @@ def progress_values(stderr):
 
 
 def annotated(text):
-    return re.search(rb"[(;]NCJ [^\n]* CK=", text, re.I) is not None
+    return re.search(rb"[(;]NCJ SEAL LINES=", text, re.I) is not None
 
 
 def strip(data, folder):

@@ -102,8 +102,10 @@ TEST_CASE("a profile written with fitted constants loads back through the profil
   const MachineProfile original = parse_profile(base.str(), haas_path);
   PowerConstants k;
   k.model = PowerModel::Combined;
+  // Values distinct from each other and within every constant's physical range (a spindle's
+  // n^2 term of W/rpm^2, Zhou's exponent), which the loader checks.
   for (std::size_t i = 0; i < kPowerParameterCount; ++i)
-    set_parameter(k, static_cast<PowerParameter>(i), 1.5 + 0.37 * static_cast<double>(i));
+    set_parameter(k, static_cast<PowerParameter>(i), 0.0015 + 0.00037 * static_cast<double>(i));
   k.zhou.c3 = 8.06e-7;
   k.co2_kg_per_kwh = 0.42;
   k.price_per_kwh = 0.19;

@@ -43,6 +43,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   convert_coordinate_system(v);             // 15
   convert_path_control(v);                  // 16
   convert_distance_modes(v);                // 17, 18
+  polar_words(v);                           // G16: radius and angle to X, Y
   const bool axes_used = convert_group0(v); // 19
   set_motion_mode(v);                       // 20
   convert_motion(v, axes_used);
@@ -102,11 +103,13 @@ void Interpreter::convert_other_codes(const BlockValues& v) {
       if (inch != state_.inch) state_.inch = inch, emit_simple(CanonKind::LengthUnits);
       continue;
     }
+    if (code == 150 || code == 160) {
+      polar_mode(code == 160, v.g_column(code));
+      continue;
+    }
     switch (code) {
     case 70:
     case 80:
-    case 150:
-    case 160:
     case 960:
     case 970:
     case 911:

@@ -35,6 +35,8 @@ std::vector<Dialect> make_dialects() {
   fanuc.max_line_length = 128;
   fanuc.canned_cycle_group = true;
   fanuc.last_code_of_group_wins = true;
+  // G15/G16 polar coordinate command (Fanuc Series 16/18 Operator's Manual, 9.2).
+  fanuc.polar_g16 = true;
   // The builders' M codes differ; a rotary table's clamp and unclamp (M10/M11) is what Fanuc-
   // controlled mills with a 4th axis share, and what CAM posts for them write around every index.
   fanuc.machine_m_codes = {10, 11};
@@ -80,6 +82,9 @@ std::vector<Dialect> make_dialects() {
   mach3.canned_cycle_group = true;
   mach3.last_code_of_group_wins = true;
   mach3.zero_radius_circle_is_no_motion = true;
+  // G16 polar mode about the point where G16 was read (Mach3's "G16 polar origin").
+  mach3.polar_g16 = true;
+  mach3.polar_pole_at_g16 = true;
   all.push_back(mach3);
 
   Dialect siemens;
@@ -97,6 +102,7 @@ std::vector<Dialect> make_dialects() {
   siemens.g70_g71_units = true; // G70/G700 inch, G71/G710 mm
   siemens.canned_cycle_group = true;
   siemens.last_code_of_group_wins = true;
+  siemens.polar_g16 = true; // ISO mode's G15/G16, as Fanuc
   all.push_back(siemens);
 
   Dialect heidenhain;

@@ -23,6 +23,14 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     note(0, "block skipped");
     return;
   }
+  // L is a whole number wherever it is read (a repeat count, G10's data code): LinuxCNC refuses
+  // the block ("Non integer value for integer"), Fanuc alarms on a decimal point in it.
+  if (v.has('l') && std::abs(*v['l'] - std::round(*v['l'])) > 1e-4) {
+    error(v.column['l' - 'a'], "L" + number_text(*v['l']) +
+                                   " is not a whole number: L counts repeats (or names G10's "
+                                   "data), and controls refuse a fraction; block skipped");
+    return;
+  }
   // Words of several letters (Sinumerik frames and cycles, ...), before any motion.
   std::optional<SinumerikCycle> cycle_now;
   if (!b.keywords.empty()) keywords(b, v, cycle_now);

@@ -374,6 +374,22 @@ TEST_CASE("the Fanuc family's additional work offsets: G54.1 P, Haas G154 P and 
   CHECK(errors(interpret(make_source("o.nc", "O1\nG21\nG54.1 P400\nM30\n"), options)) == 1);
 }
 
+TEST_CASE("L is a whole number: a canned cycle's L2.5 is refused, as rs274 refuses it") {
+  for (const char* dialect : {"linuxcnc", "fanuc", "mach3"}) {
+    CAPTURE(std::string(dialect));
+    const std::string program =
+        "G21 G90\nG0 X0 Y0 Z5\nG91 G81 X10 Y0 Z-6 R-4 F100 L2.5\nG80\nG90\nM2\n";
+    const Toolpath p = run(program, dialect);
+    CHECK(errors(p) == 1);
+    CHECK(with_severity(p, Severity::Error)[0].column == 29); // the L word
+    // No hole drilled: the block is skipped, not rounded to three holes.
+    CHECK(of_kind(p, CanonKind::Feed).empty());
+    std::string whole = program;
+    whole.replace(whole.find("L2.5"), 4, "L3");
+    CHECK(errors(run(whole, dialect)) == 0);
+  }
+}
+
 TEST_CASE("G16 polar coordinates as the Fanuc family and Mach3 read them") {
   auto ends = [](const Toolpath& p) {
     std::vector<std::pair<double, double>> out;

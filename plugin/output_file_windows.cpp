@@ -24,6 +24,7 @@
 #include <cstring>
 #include <cwchar>
 #include <iterator>
+#include <random>
 
 namespace ncjoule::cli {
 namespace {
@@ -139,9 +140,95 @@ std::wstring link_target(const std::wstring& path) {
   return final_path;
 }
 
+// Twelve random characters from 0-9a-z: what makes a temporary's name unguessable.
+std::wstring random_text() {
+  static constexpr wchar_t kAlphabet[] = L"0123456789abcdefghijklmnopqrstuvwxyz";
+  std::random_device source;
+  std::wstring out;
+  for (int i = 0; i < 12; ++i)
+    out += kAlphabet[source() % 36];
+  return out;
+}
+
+// ".NAME.ncjoule-PID-": the start of every temporary of a target (NAME cut to 200 characters so
+// that a name of the longest length a file may have is replaced too).
+std::wstring temp_prefix(const std::wstring& base) {
+  return L"." + base.substr(0, 200) + L".ncjoule-" + std::to_wstring(GetCurrentProcessId()) + L"-";
+}
+
+bool process_alive(DWORD pid) {
+  const HANDLE process = OpenProcess(PROCESS_QUERY_LIMITED_INFORMATION, FALSE, pid);
+  if (!process) return GetLastError() == ERROR_ACCESS_DENIED;
+  DWORD code = 0;
+  const bool alive = GetExitCodeProcess(process, &code) && code == STILL_ACTIVE;
+  CloseHandle(process);
+  return alive;
+}
+
 } // namespace
 
-std::string write_output_file(const std::string& target, std::string_view text) {
+std::string create_new_file(const std::string& folder, const std::string& stem,
+                            std::string_view text, std::string& path) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const std::wstring wide = widen(folder) + L"\\" + widen(stem) + random_text();
+    const HANDLE handle = CreateFileW(wide.c_str(), GENERIC_WRITE, 0, nullptr, CREATE_NEW,
+                                      FILE_ATTRIBUTE_NORMAL, nullptr);
+    if (handle == INVALID_HANDLE_VALUE) {
+      if (GetLastError() == ERROR_FILE_EXISTS || GetLastError() == ERROR_ALREADY_EXISTS) continue;
+      return "cannot create a file in " + folder + ": " + last_error_message();
+    }
+    path = platform::narrow(wide);
+    const bool written = write_all(handle, text);
+    const std::string why = written ? std::string() : last_error_message();
+    CloseHandle(handle);
+    if (!written) {
+      DeleteFileW(wide.c_str());
+      return "cannot write " + path + ": " + why;
+    }
+    return {};
+  }
+  return "cannot create a file in " + folder + ": no free name";
+}
+
+std::vector<std::string> stale_temporaries(const std::string& folder, bool remove) {
+  std::vector<std::string> found;
+  const std::wstring dir = widen(folder) + L"\\";
+  WIN32_FIND_DATAW entry{};
+  const HANDLE search = FindFirstFileW((dir + L".*.ncjoule-*").c_str(), &entry);
+  if (search == INVALID_HANDLE_VALUE) return found;
+  do {
+    if (entry.dwFileAttributes & (FILE_ATTRIBUTE_DIRECTORY | FILE_ATTRIBUTE_REPARSE_POINT))
+      continue;
+    const std::wstring name = entry.cFileName;
+    const std::size_t mark = name.rfind(L".ncjoule-");
+    if (mark == std::wstring::npos || mark == 0) continue;
+    const std::wstring tail = name.substr(mark + 9);
+    const std::size_t dash = tail.find(L'-');
+    if (dash == std::wstring::npos || dash == 0 || dash > 9 || tail.size() - dash - 1 != 12)
+      continue;
+    if (tail.find_first_not_of(L"0123456789") < dash) continue;
+    if (tail.find_first_not_of(L"0123456789abcdefghijklmnopqrstuvwxyz", dash + 1) !=
+        std::wstring::npos)
+      continue;
+    const DWORD pid = DWORD(std::wcstoul(tail.substr(0, dash).c_str(), nullptr, 10));
+    if (process_alive(pid)) continue;
+    const std::string path = platform::narrow(dir + name);
+    const std::string size =
+        std::to_string((std::uint64_t(entry.nFileSizeHigh) << 32) | entry.nFileSizeLow);
+    const std::string process = std::to_string(pid);
+    if (!remove)
+      found.push_back(path + " is a temporary file left by an interrupted run (" + size +
+                      " bytes, process " + process + ")");
+    else if (DeleteFileW((dir + name).c_str()))
+      found.push_back("removed " + path + ", a temporary file left by an interrupted run (" + size +
+                      " bytes, process " + process + ")");
+  } while (FindNextFileW(search, &entry));
+  FindClose(search);
+  return found;
+}
+
+std::string write_output_file(const std::string& target, std::string_view text,
+                              const WriteOptions& options) {
   if (target == "-") {
     if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
       return "cannot write to standard output: " + std::string(std::strerror(errno));
@@ -158,21 +245,19 @@ std::string write_output_file(const std::string& target, std::string_view text) 
     return "cannot replace " + target + ": it has " + std::to_string(existing.links) +
            " hard links, which would keep the old text (write to another file with -o)";
 
-  // The temporary file: ".NAME.ncjoule-XXXXXX" in the target's folder (a rename within one
-  // volume is what replaces a file in one step).
+  // The temporary file: ".NAME.ncjoule-PID-RANDOM" in the target's folder (a rename within one
+  // volume is what replaces a file in one step), created only if no such file exists.
   const std::size_t slash = path.find_last_of(L"\\/");
   const std::wstring folder = slash == std::wstring::npos ? L"" : path.substr(0, slash + 1);
   const std::wstring base = slash == std::wstring::npos ? path : path.substr(slash + 1);
+  // What killed runs left in the folder goes now, and the user is told.
+  for (std::string& removed :
+       stale_temporaries(folder.empty() ? std::string(".") : platform::narrow(folder), true))
+    if (options.notes) options.notes->push_back(std::move(removed));
   std::wstring temp;
   HANDLE handle = INVALID_HANDLE_VALUE;
-  static std::atomic<unsigned> counter{0};
   for (int attempt = 0; attempt < 100 && handle == INVALID_HANDLE_VALUE; ++attempt) {
-    wchar_t suffix[16];
-    std::swprintf(suffix, std::size(suffix), L"%06x",
-                  unsigned(GetTickCount64() * 2654435761u ^ GetCurrentProcessId() * 40503u ^
-                           counter.fetch_add(1) * 2246822519u) &
-                      0xffffffu);
-    temp = folder + L"." + base + L".ncjoule-" + suffix;
+    temp = folder + temp_prefix(base) + random_text();
     handle = CreateFileW(temp.c_str(), GENERIC_WRITE, FILE_SHARE_READ | FILE_SHARE_DELETE, nullptr,
                          CREATE_NEW, FILE_ATTRIBUTE_NORMAL, nullptr);
     if (handle == INVALID_HANDLE_VALUE && GetLastError() != ERROR_FILE_EXISTS &&
@@ -191,6 +276,11 @@ std::string write_output_file(const std::string& target, std::string_view text) 
     error = "cannot write " + target + ": " + last_error_message();
   if (!CloseHandle(handle) && error.empty())
     error = "cannot write " + target + ": " + last_error_message();
+  // Replacing the file that was read: checked now that the new text is complete, right before
+  // the replacement (the file unchanged, nobody holding it open for writing).
+  if (error.empty() && options.in_place)
+    error = in_place_changed(platform::narrow(path), options.in_place->read,
+                             options.in_place->program_end);
   if (error.empty()) {
     const bool replaced = existing.exists && ReplaceFileW(path.c_str(), temp.c_str(), nullptr,
                                                           REPLACEFILE_IGNORE_MERGE_ERRORS |

@@ -7,11 +7,13 @@
 #include <optional>
 #include <vector>
 
+#include "annotation_form.hpp"
 #include "header.hpp"
 #include "line_layout.hpp"
 #include "marker.hpp"
 #include "ncjoule/annotate.hpp"
 #include "number_format.hpp"
+#include "seal.hpp"
 #include "strip_line.hpp"
 
 namespace ncjoule {
@@ -66,18 +68,6 @@ CleanLines clean_lines(const SourceFile& source) {
     c.text[i] = c.storage.back();
   }
   return c;
-}
-
-// The key of the program the lines hold: that of strip(source), so that annotating an
-// annotated file gives it again.
-std::string program_key(const CleanLines& lines) {
-  FileKey key;
-  for (std::size_t i = 0; i < lines.text.size(); ++i) {
-    if (lines.removed[i]) continue;
-    key.add(lines.text[i]);
-    key.add(lines.eol[i]);
-  }
-  return key.value();
 }
 
 // The index of the first line the header goes before, or nullopt when there is no line to put
@@ -163,8 +153,7 @@ std::vector<Field> block_fields(const LineSummary* summary, double end_s,
 
 // The block's comment, with as many fields as fit in `room` (the space before it included);
 // empty when not even the time fits.
-std::string block_comment(std::vector<Field> fields, std::size_t room, MarkKind kind,
-                          const CommentStyle& style, std::string_view seed) {
+std::string block_comment(std::vector<Field> fields, std::size_t room, const CommentStyle& style) {
   while (true) {
     std::string content = "NCJ";
     content.reserve(room);
@@ -172,7 +161,7 @@ std::string block_comment(std::vector<Field> fields, std::size_t room, MarkKind 
       content += ' ';
       content += f.text;
     }
-    std::string comment = marked_comment(content, kind, style, seed);
+    std::string comment = plain_comment(content, style);
     if (comment.size() + 1 <= room) return comment;
     auto last = std::max_element(fields.begin(), fields.end(), [](const Field& a, const Field& b) {
       return a.drop_rank < b.drop_rank;
@@ -201,21 +190,30 @@ struct BlockNote {
 BlockNote block_note(std::string_view text, const std::vector<Field>& fields,
                      const Dialect& dialect, const WriteStyle& style) {
   BlockNote note;
-  // Sealed with the file's key, or without a header with the block's line.
-  const std::string seed = style.seed.empty() ? line_seed(text) : style.seed;
   const std::optional<std::size_t> at = insertion_point(text, dialect, style.comment);
   if (at && text.size() < style.max_line_length) {
-    note.comment = block_comment(fields, style.max_line_length - text.size(), MarkKind::Inline,
-                                 style.comment, seed);
+    note.comment = block_comment(fields, style.max_line_length - text.size(), style.comment);
     note.at = *at;
   }
   if (note.comment.empty() && takes_comment_lines(dialect)) {
-    note.comment =
-        block_comment(fields, style.max_line_length + 1, MarkKind::Line, style.comment, seed);
+    note.comment = block_comment(fields, style.max_line_length + 1, style.comment);
     note.own_line = !note.comment.empty();
   }
   return note;
 }
+
+// The "NCJ ..." part of a comment as written, as the seal counts it.
+std::string normal_of(const std::string& comment, const CommentStyle& style) {
+  return normal_text(std::string_view(comment).substr(
+      style.open.size(), comment.size() - style.open.size() - style.close.size()));
+}
+
+// Where the SEAL field of a file without a header can go: just inside a block comment's end,
+// with `room` bytes to spare on its line.
+struct SealSpot {
+  std::size_t offset = 0;
+  std::size_t room = 0;
+};
 
 } // namespace
 } // namespace annotation
@@ -251,91 +249,132 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
     for (const OperationSummary& op : estimate.operations)
       if (const auto i = in_source(op.line)) operations.emplace(*i, &op);
 
-  // With a header, every checksum is sealed with the file's key, which its first line holds;
-  // without one (or when not even the key line fits), each block's with its own line.
+  // The header, when there is a place for it and its seal line fits the dialect's lines.
   std::optional<std::size_t> header_at;
   WriteStyle header_style = style;
   header_style.max_line_length = std::min(style.max_line_length, kHeaderWidth);
-  std::string key_line;
   if (options.header) header_at = header_position(lines);
-  if (header_at) {
-    const std::string key = program_key(lines);
-    style.seed = header_style.seed = key_seed(key);
-    key_line = marked_comment(key_content(key), MarkKind::Key, style.comment, "");
-    if (key_line.size() > header_style.max_line_length) {
-      header_at.reset();
-      style.seed = header_style.seed = {};
-    }
-  }
-
-  // The header: the key, the summary's lines, then one line for each warning, which names its
-  // block's line in the output: known once the lines are written, so the header goes in last.
+  if (header_at && seal_line(Seal{9999, 999999999, "00000000", {}}, style.comment).size() >
+                       header_style.max_line_length)
+    header_at.reset();
   const std::size_t header_line = header_at.value_or(n); // n: none
-  std::vector<std::string> header;
-  std::vector<WarningText> warnings;
   std::vector<int> output_line;
-  if (header_at) {
-    header.push_back(key_line);
-    for (std::string& h : summary_lines(estimate, machine, header_style))
-      header.push_back(std::move(h));
-    warnings = header_warnings(estimate);
-    output_line.assign(n, 0);
-  }
+  if (header_at) output_line.assign(n, 0);
 
   // Every line as it was, old annotations out, each block with its comment after its code or on
   // a line of its own before it. Written as they come: a program of millions of blocks keeps
-  // none of their comments.
+  // none of their comments. The seal counts them, and lists the comments of the same form the
+  // program held itself (a user's, or one pasted from an annotated file), to keep.
   std::string out;
   out.reserve(source.text.size() + source.text.size() / 2 + 1024);
   std::size_t header_offset = 0;
   int next = 1; // the output line the next line lands on
+  SealSum sum;
+  std::size_t blocks = 0, ordinal = 0;
+  std::vector<KeptComment> keep;
+  std::vector<SealSpot> spots;
+  bool load_used = false, operation_used = false;
+  auto ours = [&](const std::string& comment, std::size_t line_length) {
+    ++ordinal;
+    ++blocks;
+    sum.add_block(normal_of(comment, style.comment));
+    if (!header_at && spots.size() < 64 && line_length < style.max_line_length)
+      spots.push_back(
+          {out.size() - style.comment.close.size(), style.max_line_length - line_length});
+  };
   for (std::size_t i = 0; i < n; ++i) {
-    if (i == header_line) {
-      header_offset = out.size();
-      next += static_cast<int>(header.size() + warnings.size());
-    }
+    if (i == header_line) header_offset = out.size();
     if (lines.removed[i]) continue;
     const std::string_view text = lines.text[i];
     const LineSummary* s = summary[i];
     const auto op = operations.find(i);
     const bool op_start = op != operations.end();
     BlockNote note;
-    if ((s && (s->has_move || s->time_s > 0)) || op_start)
+    if ((s && (s->has_move || s->time_s > 0)) || op_start) {
       note = block_note(text,
                         block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr,
                                      options.fields, block_mrr_scale(estimate.inch)),
                         estimate.dialect, style);
+      load_used = load_used || (!note.comment.empty() && s && s->spindle_load > 1);
+      operation_used =
+          operation_used || (!note.comment.empty() && op_start && options.fields.operation);
+    }
     if (note.own_line) {
       out += note.comment;
+      ours(note.comment, note.comment.size());
       out += lines.eol[i].empty() ? file_eol(lines, i) : lines.eol[i];
       ++next;
     }
     if (header_at) output_line[i] = next;
     ++next;
+    // The program's own comments of the block form, in order with ours.
+    const std::vector<FoundComment> alike = block_comments(text);
+    const std::size_t at = note.comment.empty() || note.own_line ? text.size() + 1 : note.at;
+    std::size_t k = 0;
+    auto keep_alike = [&](std::size_t upto) {
+      for (; k < alike.size() && alike[k].begin < upto; ++k)
+        keep.push_back({++ordinal, keep_hash(alike[k].normal)});
+    };
+    keep_alike(at);
     if (note.comment.empty() || note.own_line) {
       out += text;
     } else {
       out += text.substr(0, note.at);
       out += ' ';
       out += note.comment;
+      ours(note.comment, text.size() + 1 + note.comment.size());
       out += text.substr(note.at);
     }
+    keep_alike(text.size() + 1);
     out += lines.eol[i];
   }
 
   if (header_at) {
+    // The header: the summary, the keys, one line for each warning (which names its block's
+    // line in the output, known now), the comments to keep; then the seal before them all.
+    std::vector<std::string> header = summary_lines(estimate, machine, header_style);
+    KeyUse keys;
+    keys.fields = options.fields;
+    keys.inch = estimate.inch;
+    keys.load = load_used;
+    keys.operation = operation_used;
+    for (std::string& k : key_lines(keys, header_style))
+      header.push_back(std::move(k));
+    const std::vector<WarningText> warnings = header_warnings(estimate);
+    std::vector<std::string> kept = keep_lines(keep, style.comment, header_style.max_line_length);
+    // Lines after the header move down by its length (the seal line's included).
+    const int header_length = int(1 + header.size() + warnings.size() + kept.size());
     for (std::string& w : warning_lines(warnings, header_style, [&](int line) {
            const auto i = in_source(line - 1);
-           return i ? output_line[*i] : line;
+           if (!i) return line;
+           return output_line[*i] + (*i >= header_line ? header_length : 0);
          }))
       header.push_back(std::move(w));
+    for (std::string& k : kept)
+      header.push_back(std::move(k));
+    for (const std::string& h : header)
+      sum.add_header(normal_text(h));
+    const Seal seal{header.size(), blocks, sum.value(header.size(), blocks), keep};
     const std::string_view eol = file_eol(lines, header_line);
-    std::string text;
+    std::string text = seal_line(seal, style.comment);
+    text += eol;
     for (const std::string& h : header) {
       text += h;
       text += eol;
     }
     out.insert(header_offset, text);
+  } else if (blocks > 0) {
+    // No header: the seal goes in a SEAL field of the first block comment with room for it.
+    const Seal seal{0, blocks, sum.value(0, blocks), keep};
+    std::string field = " SEAL=" + seal_field(seal);
+    if (style.comment.upper_case)
+      for (char& c : field)
+        c = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
+    for (const SealSpot& spot : spots) {
+      if (spot.room < field.size()) continue;
+      out.insert(spot.offset, field);
+      break;
+    }
   }
   return out;
 }

@@ -234,35 +234,77 @@ Group constants(const PowerConstants& power) {
   return g;
 }
 
-Group legend() {
-  Group g = make_group("KEYS");
-  for (std::string_view sentence :
-       {"T=block time, E=energy, P=mean power, MRR=mean removal rate mm3 per s,",
-        "CUM=time at block end, OP OPT OPE=operation from this tool change, its time, energy.",
-        "ncjoule strip removes the NCJ comments of this file"}) {
-    // Split on spaces so that the legend wraps like any other group.
-    std::size_t begin = 0;
-    while (begin < sentence.size()) {
-      const std::size_t end = std::min(sentence.find(' ', begin), sentence.size());
-      g.fields.emplace_back(sentence.substr(begin, end - begin));
-      begin = end + 1;
-    }
-  }
-  return g;
-}
-
-// Text a controller reads safely inside a comment: letters, digits, space and . , = _ - only.
-std::string safe_text(std::string_view text) {
+// A message as words a controller reads safely inside a comment: letters, digits, space and
+// . , = _ - only. Units keep their sense (mm^3/s -> mm3-s), a clause mark (: ;) becomes a comma,
+// brackets and quotes go.
+std::string safe_words(std::string_view text) {
   std::string out;
   out.reserve(text.size());
+  auto put = [&](char c) {
+    if (c == ' ' && (out.empty() || out.back() == ' ')) return;
+    if (c == ',' && !out.empty() && out.back() == ' ') out.pop_back();
+    out += c;
+  };
   for (char c : text) {
-    const char put = is_safe_char(c) ? c : ' ';
-    if (put == ' ' && (out.empty() || out.back() == ' ')) continue;
-    out += put;
+    if (c == '^' || c == '(' || c == ')' || c == '[' || c == ']' || c == '"' || c == '\'' ||
+        c == '`')
+      continue;
+    if (c == '/')
+      put('-');
+    else if (c == ':' || c == ';')
+      put(',');
+    else
+      put(is_safe_char(c) ? c : ' ');
   }
-  while (!out.empty() && out.back() == ' ')
+  while (!out.empty() && (out.back() == ' ' || out.back() == ',' || out.back() == '.'))
     out.pop_back();
   return out;
+}
+
+// The point of a message, as one whole sentence of at most `room` characters: all of it when it
+// fits (details in brackets left out), else its first and last clauses (the clauses between
+// ": ", "; " or " - "; most messages say what and where first, and what follows last), else
+// its first clause, else as much of that as ends at a comma or a word; empty when not even a
+// word fits.
+std::string sentence(std::string_view message, std::size_t room) {
+  std::string plain;
+  int depth = 0;
+  for (char c : message) {
+    if (c == '(') ++depth;
+    if (depth == 0) plain += c;
+    if (c == ')' && depth > 0) --depth;
+  }
+  std::vector<std::string> clauses;
+  std::string_view rest = plain;
+  while (!rest.empty()) {
+    std::size_t end = rest.size(), skip = 0;
+    for (std::string_view mark : {": ", "; ", " - "})
+      if (const std::size_t at = rest.find(mark); at < end) end = at, skip = mark.size();
+    if (std::string c = safe_words(rest.substr(0, end)); !c.empty()) clauses.push_back(c);
+    rest.remove_prefix(std::min(rest.size(), end + skip));
+  }
+  if (clauses.empty()) return {};
+  std::string all;
+  for (const std::string& c : clauses)
+    all += (all.empty() ? "" : ", ") + c;
+  if (all.size() + 1 <= room) return all + ".";
+  if (clauses.size() > 2) {
+    const std::string ends = clauses.front() + ", " + clauses.back();
+    if (ends.size() + 1 <= room) return ends + ".";
+  }
+  const std::string& text = clauses.front();
+  if (text.size() + 1 <= room) return text + ".";
+  if (room < 2) return {};
+  for (char boundary : {',', ' '}) {
+    // The last boundary that leaves the text before it, and its full stop, within `room`.
+    const std::size_t cut = text.rfind(boundary, room - 1);
+    if (cut == std::string::npos || cut == 0) continue;
+    std::string part = text.substr(0, cut);
+    while (!part.empty() && (part.back() == ',' || part.back() == ' '))
+      part.pop_back();
+    if (!part.empty()) return part + ".";
+  }
+  return {};
 }
 
 } // namespace
@@ -275,10 +317,16 @@ std::vector<WarningText> header_warnings(const Estimate& estimate) {
   std::vector<WarningText> texts;
   texts.reserve(kMaxLines + 1);
   if (!estimate.unsimulated_tools.empty()) {
-    std::string tools = "TOOLS NOT SIMULATED";
-    for (int t : estimate.unsimulated_tools)
-      tools += " T" + std::to_string(t);
-    texts.push_back({tools + " - their moves remove nothing, describe them with --tool", 0, ""});
+    std::string tools;
+    for (std::size_t k = 0; k < estimate.unsimulated_tools.size() && k < 6; ++k)
+      tools += (k ? " T" : "T") + std::to_string(estimate.unsimulated_tools[k]);
+    if (estimate.unsimulated_tools.size() > 6)
+      tools += " and " + std::to_string(estimate.unsimulated_tools.size() - 6) + " more";
+    texts.push_back({"", 0,
+                     "tools " + tools +
+                         " not simulated, their moves remove nothing, describe them "
+                         "with --tool",
+                     1});
   }
   std::vector<std::pair<const Diagnostic*, int>> distinct; // first of each message, count
   for (const Diagnostic& d : estimate.diagnostics) {
@@ -294,42 +342,62 @@ std::vector<WarningText> header_warnings(const Estimate& estimate) {
   std::size_t shown = 0;
   for (const auto& [d, count] : distinct) {
     if (texts.size() >= kMaxLines) break;
-    std::string tail = safe_text(d->message);
-    if (count > 1) tail += " - " + std::to_string(count) + " times";
-    texts.push_back({d->severity == Severity::Error ? "ERROR " : "", d->line, std::move(tail)});
+    texts.push_back({d->severity == Severity::Error ? "ERROR " : "", d->line, d->message, count});
     ++shown;
   }
   if (shown < distinct.size())
-    texts.push_back({"and " + std::to_string(distinct.size() - shown) +
-                         " more - ncjoule estimate lists them all",
-                     0, ""});
+    texts.push_back({"", 0,
+                     std::to_string(distinct.size() - shown) +
+                         " more warnings, ncjoule estimate lists them all",
+                     1});
   return texts;
 }
 
 namespace {
 
 std::size_t comment_length(std::size_t content_length, const WriteStyle& style) {
-  return style.comment.open.size() + content_length + 4 + 6 + style.comment.close.size();
+  return style.comment.open.size() + content_length + style.comment.close.size();
 }
 
-void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>& lines) {
-  const std::string start = "NCJ " + group.label;
-  std::string content;
-  content.reserve(style.max_line_length);
-  content = start;
-  auto flush = [&] {
-    if (content.size() > start.size())
-      lines.push_back(marked_comment(content, MarkKind::Header, style.comment, style.seed));
-    content = start;
-  };
-  for (const std::string& f : group.fields) {
-    if (comment_length(content.size() + 1 + f.size(), style) > style.max_line_length) flush();
-    // A field too long for a line of its own is left out rather than cut.
-    if (comment_length(content.size() + 1 + f.size(), style) > style.max_line_length) continue;
+// The lines `fields` make under `start` when each line holds at most `width` bytes.
+std::vector<std::string> fill(const std::string& start, const std::vector<std::string>& fields,
+                              std::size_t width, const WriteStyle& style) {
+  std::vector<std::string> contents;
+  std::string content = start;
+  for (const std::string& f : fields) {
+    if (content.size() > start.size() &&
+        comment_length(content.size() + 1 + f.size(), style) > width) {
+      contents.push_back(content);
+      content = start;
+    }
     content += ' ';
     content += f;
   }
-  flush();
+  if (content.size() > start.size()) contents.push_back(content);
+  return contents;
+}
+
+// A group on as few lines as it needs, each beginning with its label, the fields spread evenly
+// over them: a line that does not fit is never left with a fragment of its group's end.
+void wrap(const Group& group, const WriteStyle& style, std::vector<std::string>& lines) {
+  const std::string start = "NCJ " + group.label;
+  // A field too long for a line of its own is left out rather than cut.
+  std::vector<std::string> fields;
+  for (const std::string& f : group.fields)
+    if (comment_length(start.size() + 1 + f.size(), style) <= style.max_line_length)
+      fields.push_back(f);
+  std::vector<std::string> best = fill(start, fields, style.max_line_length, style);
+  // The narrowest width that needs no more lines.
+  for (std::size_t width = style.max_line_length; width-- > start.size();) {
+    std::vector<std::string> narrower = fill(start, fields, width, style);
+    bool fits = narrower.size() == best.size();
+    for (const std::string& c : narrower)
+      fits = fits && comment_length(c.size(), style) <= width;
+    if (!fits) break;
+    best = std::move(narrower);
+  }
+  for (const std::string& c : best)
+    lines.push_back(plain_comment(c, style.comment));
 }
 
 } // namespace
@@ -351,7 +419,6 @@ std::vector<std::string> summary_lines(const Estimate& estimate, const MachinePr
     wrap(g, style, lines);
   wrap(machine_used(estimate, machine), style, lines);
   wrap(constants(estimate.power), style, lines);
-  wrap(legend(), style, lines);
   return lines;
 }
 
@@ -359,17 +426,59 @@ std::vector<std::string> warning_lines(const std::vector<WarningText>& warnings,
                                        const WriteStyle& style,
                                        const std::function<int(int)>& line_in_output) {
   std::vector<std::string> lines;
-  // One line per warning, cut to the line length: a warning is read, not parsed.
   for (const WarningText& w : warnings) {
     std::string content = "NCJ WARN " + w.head;
     if (w.line > 0) content += "L" + std::to_string(line_in_output(w.line)) + " ";
-    content += w.tail;
-    while (comment_length(content.size(), style) > style.max_line_length && !content.empty())
-      content.pop_back();
-    while (!content.empty() && content.back() == ' ')
-      content.pop_back();
-    lines.push_back(marked_comment(content, MarkKind::Header, style.comment, style.seed));
+    const std::size_t room = style.max_line_length -
+                             std::min(style.max_line_length, comment_length(content.size(), style));
+    const std::string times = w.count > 1 ? ", " + std::to_string(w.count) + " times" : "";
+    std::string text = sentence(w.message, room > times.size() ? room - times.size() : 0);
+    if (!text.empty() && !times.empty()) text.insert(text.size() - 1, times);
+    if (text.empty()) text = sentence("a warning, ncjoule estimate gives it whole", room);
+    lines.push_back(plain_comment(content + text, style.comment));
   }
+  return lines;
+}
+
+std::vector<std::string> key_lines(const KeyUse& keys, const WriteStyle& style) {
+  std::vector<std::string> parts;
+  const BlockFields& f = keys.fields;
+  if (f.time) parts.push_back("T=time of the block");
+  if (f.energy) parts.push_back("E=its energy");
+  if (f.power) parts.push_back("P=its mean power");
+  if (f.mrr)
+    parts.push_back(keys.inch ? "MRR=its mean removal rate in in3 per min"
+                              : "MRR=its mean removal rate in mm3 per s");
+  if (f.cumulative) parts.push_back("CUM=time at its end");
+  if (keys.load) parts.push_back("LOAD_PCT=spindle power in percent of its rating");
+  if (keys.operation) {
+    parts.push_back("OP=operation starting here");
+    parts.push_back("OPT=its time");
+    parts.push_back("OPE=its energy");
+  }
+  // Whole sentences: as many definitions as fit a line, then a full stop.
+  std::vector<std::string> lines;
+  const std::string start = "NCJ KEYS ";
+  std::string content;
+  auto flush = [&] {
+    if (!content.empty()) lines.push_back(plain_comment(start + content + ".", style.comment));
+    content.clear();
+  };
+  auto fits = [&](std::size_t length) {
+    return comment_length(start.size() + length + 1, style) <= style.max_line_length;
+  };
+  for (const std::string& p : parts) {
+    if (!fits(p.size())) continue; // no line is that long: said in the documentation only
+    if (!content.empty() && !fits(content.size() + 2 + p.size())) flush();
+    content += (content.empty() ? "" : ", ") + p;
+  }
+  flush();
+  for (std::string_view seal :
+       {"SEAL lets ncjoule strip take out exactly these comments", "SEAL is for ncjoule strip"})
+    if (fits(seal.size())) {
+      lines.push_back(plain_comment(start + std::string(seal) + ".", style.comment));
+      break;
+    }
   return lines;
 }
 

@@ -201,6 +201,18 @@ std::string marked_comment(std::string_view content, MarkKind kind, const Commen
   return out;
 }
 
+std::string plain_comment(std::string_view content, const CommentStyle& style) {
+  std::string out;
+  out.reserve(style.open.size() + content.size() + style.close.size());
+  out += style.open;
+  for (char c : content) {
+    if (!is_safe_char(c)) c = '_';
+    out += style.upper_case ? upper(c) : c;
+  }
+  out += style.close;
+  return out;
+}
+
 std::size_t match_marked_comment(std::string_view text, std::size_t pos, MarkKind kind,
                                  std::string_view seed) {
   return match(text, pos, [&](std::string_view content, std::string_view sum, std::size_t) {

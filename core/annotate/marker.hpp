@@ -42,7 +42,6 @@ struct CommentStyle {
 struct WriteStyle {
   CommentStyle comment;
   std::size_t max_line_length = 0; // bytes, without the line ending
-  std::string seed;                // key_seed() of the file; empty: no header, line seeds
 };
 
 // The dialect's comment syntax when it is one strip() recognises ("(" ")" or ";"), else the
@@ -74,7 +73,12 @@ std::string line_seed(std::string_view line);
 // file an editor or a controller turned to upper case still strips.
 std::string checksum(std::string_view content, MarkKind kind, std::string_view seed);
 
-// OPEN content " CK=" checksum CLOSE, in upper case if the style says so. `content` must start
+// OPEN content CLOSE, in upper case if the style says so; a character that is not safe becomes
+// '_'. What annotate() writes now: the seal (seal.hpp) holds what strip() needs.
+std::string plain_comment(std::string_view content, const CommentStyle& style);
+
+// OPEN content " CK=" checksum CLOSE, in upper case if the style says so (earlier versions'
+// comments, and the seal line). `content` must start
 // with "NCJ"; a character that is not safe becomes '_'.
 std::string marked_comment(std::string_view content, MarkKind kind, const CommentStyle& style,
                            std::string_view seed);

@@ -27,9 +27,43 @@ fit::Parameter parameter(PP id, double initial, double fallback_scale,
   return p;
 }
 
+// How many different values `values` holds (exactly equal ones counted once).
+std::size_t distinct(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return std::size_t(std::unique(values.begin(), values.end()) - values.begin());
+}
+
+// A refusal when `rows` readings, with `spread` different values of what the slope is taken
+// along, cannot determine `constants` constants with a standard error: one row more than the
+// constants, and two values at least for a slope.
+std::string too_little(std::size_t rows, std::size_t constants, std::size_t spread,
+                       const std::string& along) {
+  if (rows < constants + 1)
+    return std::to_string(rows) + " usable row" + (rows == 1 ? "" : "s") + ": " +
+           std::to_string(constants) + " constants need " + std::to_string(constants + 1) +
+           " at least (one more than the constants, for an error estimate)";
+  if (spread < 2)
+    return "every row has the same " + along + ": a slope needs readings at two " + along +
+           "s at least";
+  return {};
+}
+
+FitReport refused(const std::string& what, std::size_t points, std::string why) {
+  FitReport report;
+  report.what = what;
+  report.points = points;
+  report.refused = std::move(why);
+  return report;
+}
+
 // KA + KB * x fitted to y: starting values from ordinary least squares, then Ceres.
 FitReport fit_line(PP ka, PP kb, const std::vector<std::pair<double, double>>& xy,
-                   const std::string& what) {
+                   const std::string& what, const std::string& along) {
+  std::vector<double> xs;
+  for (const auto& [x, y] : xy)
+    xs.push_back(x);
+  if (std::string why = too_little(xy.size(), 2, distinct(xs), along); !why.empty())
+    return refused(what, xy.size(), why);
   fit::Problem problem;
   problem.parameters = {parameter(ka, 0, 1), parameter(kb, 0, 1)};
   for (const auto& [x, y] : xy)
@@ -95,6 +129,7 @@ const FittedConstant* FitReport::find(PowerParameter p) const {
 }
 
 void apply_fit(PowerConstants& constants, const FitReport& fit) {
+  if (!fit.refused.empty()) return;
   for (const FittedConstant& c : fit.constants)
     if (!c.held) set_parameter(constants, c.parameter, c.value);
 }
@@ -103,7 +138,8 @@ FitReport fit_spindle(const std::vector<SteadyStateReading>& readings, double ba
   std::vector<std::pair<double, double>> xy;
   for (const auto& r : readings)
     xy.emplace_back(r.rpm, r.power_w - baseline_w);
-  FitReport fit = fit_line(PP::SpindleKA, PP::SpindleKB, xy, "spindle");
+  FitReport fit = fit_line(PP::SpindleKA, PP::SpindleKB, xy, "spindle", "spindle speed");
+  if (!fit.refused.empty()) return fit;
   // A table's straight line replaces the base profile's spindle curve whole: its n^2 term too.
   fit.constants.push_back({PP::SpindleKC, 0.0, 0.0, false});
   return fit;
@@ -117,7 +153,7 @@ FitReport fit_axis_move(const std::vector<SteadyStateReading>& readings, Axis ax
     xy.emplace_back(r.feed_mm_s, r.power_w - known.pavanaskar.tare_w - spindle_power(known, r.rpm));
   constexpr PP ka[3] = {PP::MoveKAX, PP::MoveKAY, PP::MoveKAZ};
   constexpr PP kb[3] = {PP::MoveKBX, PP::MoveKBY, PP::MoveKBZ};
-  return fit_line(ka[i], kb[i], xy, std::string("axis ") + "xyz"[i] + " motion");
+  return fit_line(ka[i], kb[i], xy, std::string("axis ") + "xyz"[i] + " motion", "feed");
 }
 
 FitReport fit_axis_cut(const std::vector<SteadyStateReading>& readings, Axis axis,
@@ -131,7 +167,7 @@ FitReport fit_axis_cut(const std::vector<SteadyStateReading>& readings, Axis axi
     xy.emplace_back(r.mrr_mm3_s, r.power_w - pv.tare_w - spindle_power(known, r.rpm));
   constexpr PP ka[3] = {PP::CutKAX, PP::CutKAY, PP::CutKAZ};
   constexpr PP kb[3] = {PP::CutKBX, PP::CutKBY, PP::CutKBZ};
-  return fit_line(ka[i], kb[i], xy, std::string("axis ") + "xyz"[i] + " cutting");
+  return fit_line(ka[i], kb[i], xy, std::string("axis ") + "xyz"[i] + " cutting", "removal rate");
 }
 
 FitReport fit_zhou_power(const std::vector<SteadyStateReading>& readings) {
@@ -140,11 +176,18 @@ FitReport fit_zhou_power(const std::vector<SteadyStateReading>& readings) {
   problem.parameters = {parameter(PP::ZhouC1, 0, 1), parameter(PP::ZhouC2, 0, 1e-4),
                         parameter(PP::ZhouC3, 0, 1e-6), parameter(PP::ZhouC4, 0, 1)};
   problem.power_law = fit::PowerLawTerm{2, 3};
+  std::vector<double> cutting_rpm;
   for (const auto& r : readings) {
     const double weight = r.rpm > 0 ? r.mrr_mm3_s : 0.0;
     problem.observations.push_back(
         {{1.0, r.rpm, 0, 0}, weight, r.rpm, r.power_w / kWattsPerKilowatt});
+    if (weight > 0) cutting_rpm.push_back(r.rpm);
   }
+  // c4, the speed exponent of the cutting term, needs cuts at two speeds.
+  if (std::string why = too_little(readings.size(), 4, distinct(cutting_rpm),
+                                   "spindle speed among the cutting rows (MRR > 0)");
+      !why.empty())
+    return refused("Zhou power (kW)", readings.size(), why);
   return fit_power_law_model(problem, {1, 1e-4, 1e-6, 1}, 3.0, "Zhou power (kW)");
 }
 
@@ -159,6 +202,13 @@ FitReport fit_zhou_sec(const std::vector<SteadyStateReading>& readings) {
     problem.observations.push_back(
         {{0, 0, r.rpm / r.mrr_mm3_s, 1.0 / r.mrr_mm3_s}, 1.0, r.rpm, r.power_w / r.mrr_mm3_s});
   }
+  std::vector<double> rpm;
+  for (const auto& o : problem.observations)
+    rpm.push_back(o.power_base);
+  if (std::string why = too_little(problem.observations.size(), 4, distinct(rpm),
+                                   "spindle speed among the cutting rows (MRR > 0)");
+      !why.empty())
+    return refused("Zhou SEC (J/mm^3)", problem.observations.size(), why);
   return fit_power_law_model(problem, {1e-5, 1, 0.1, 100}, 3.0, "Zhou SEC (J/mm^3)");
 }
 

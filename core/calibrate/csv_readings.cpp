@@ -1,5 +1,7 @@
 // Steady-state readings and power logs from numeric CSV tables: finds the columns by name and
 // converts their units to ncjoule's internal ones.
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +15,44 @@ struct ColumnChoice {
   std::string_view name;
   double factor; // to internal units
 };
+
+// What a reading can physically be, in internal units (a slip such as 1e308 or 1e-300 in a cell
+// is refused at the cell, before a fit overflows on it): spindle speeds to 200,000 rpm, feeds to
+// 2,000 mm/s (120 m/min), removal rates to 1e6 mm^3/s, powers to 1 MW (as a profile's), times
+// to 1e10 s (a Unix time stamp fits).
+struct Range {
+  double highest;
+  std::string_view unit; // for the message, in internal units
+};
+constexpr Range kRpmRange{2e5, "rpm"};
+constexpr Range kFeedRange{2000, "mm/s"};
+constexpr Range kMrrRange{1e6, "mm^3/s"};
+constexpr Range kPowerRange{1e6, "W"};
+constexpr Range kTimeRange{1e10, "s"};
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// The cell's value in internal units when it lies within [lowest, range.highest]; otherwise an
+// error at the cell and nullopt.
+std::optional<double> checked(const NumericCsv& csv, std::size_t row, std::size_t column,
+                              double factor, double lowest, const Range& range,
+                              std::vector<Diagnostic>& diagnostics) {
+  const double v = csv.rows[row][column] * factor;
+  if (v >= lowest && v <= range.highest) return v;
+  const std::string what = !std::isfinite(v) ? "is not a finite number"
+                           : v < lowest      ? "must not be negative"
+                                             : "is beyond what a machine can be";
+  diagnostics.push_back(
+      {Severity::Error, csv.path, csv.row_lines[row], csv.cell_columns[row][column],
+       "column '" + csv.columns[column] + "' " + what + " (" + format_number(v) + " " +
+           std::string(range.unit) + "; from " + format_number(lowest) + " to " +
+           format_number(range.highest) + " " + std::string(range.unit) + ")"});
+  return std::nullopt;
+}
 
 struct FoundColumn {
   std::size_t index = 0;
@@ -64,24 +104,19 @@ std::vector<SteadyStateReading> readings_from_csv(const NumericCsv& csv, unsigne
   const auto power = need(kPower, true);
   if (missing) return readings;
   for (std::size_t r = 0; r < csv.rows.size(); ++r) {
-    const auto& row = csv.rows[r];
     const int line = csv.row_lines[r];
     bool ok = true;
-    auto value = [&](const std::optional<FoundColumn>& c) {
+    auto value = [&](const std::optional<FoundColumn>& c, const Range& range) {
       if (!c) return 0.0;
-      const double v = row[c->index] * c->factor;
-      if (v < 0) {
-        diagnostics.push_back({Severity::Error, csv.path, line, csv.cell_columns[r][c->index],
-                               "column '" + csv.columns[c->index] + "' must not be negative"});
-        ok = false;
-      }
-      return v;
+      const auto v = checked(csv, r, c->index, c->factor, 0, range, diagnostics);
+      ok = ok && v.has_value();
+      return v.value_or(0.0);
     };
     SteadyStateReading reading;
-    reading.rpm = value(rpm);
-    reading.feed_mm_s = value(feed);
-    reading.mrr_mm3_s = value(mrr);
-    reading.power_w = value(power);
+    reading.rpm = value(rpm, kRpmRange);
+    reading.feed_mm_s = value(feed, kFeedRange);
+    reading.mrr_mm3_s = value(mrr, kMrrRange);
+    reading.power_w = value(power, kPowerRange);
     reading.line = line;
     if (ok) readings.push_back(reading);
   }
@@ -102,8 +137,12 @@ std::optional<PowerLog> power_log_from_csv(const NumericCsv& csv,
   PowerLog log;
   log.path = csv.path;
   for (std::size_t r = 0; r < csv.rows.size(); ++r) {
-    const double t = csv.rows[r][time->index] * time->factor;
-    const double p = csv.rows[r][power->index] * power->factor;
+    // A meter's power is never negative: a negative cell is a slip, or the wrong column.
+    const auto time_s =
+        checked(csv, r, time->index, time->factor, -kTimeRange.highest, kTimeRange, diagnostics);
+    const auto power_w = checked(csv, r, power->index, power->factor, 0, kPowerRange, diagnostics);
+    if (!time_s || !power_w) continue;
+    const double t = *time_s, p = *power_w;
     if (!log.t_s.empty() && !(t > log.t_s.back())) {
       diagnostics.push_back({Severity::Error, csv.path, csv.row_lines[r],
                              csv.cell_columns[r][time->index],

@@ -122,6 +122,24 @@ double solve_columns(const Problem& p, const std::vector<std::size_t>& columns,
 
 } // namespace
 
+// Whether every number of the problem is one the solver can square and sum without overflow:
+// finite, within 1e100 in size, and a power law's base above 0. Readings are checked against
+// physical ranges where they are read; this keeps a caller's slip from reaching Ceres and Eigen
+// (a 1e308 once ended in a crash inside Eigen's SVD under Ceres' covariance).
+bool solvable(const Problem& p) {
+  auto fits = [](double v) { return std::isfinite(v) && std::abs(v) <= 1e100; };
+  for (const Parameter& par : p.parameters)
+    if (!fits(par.initial) || !fits(par.scale) || par.scale == 0) return false;
+  for (const Observation& o : p.observations) {
+    if (!fits(o.y) || !fits(o.power_weight)) return false;
+    for (double x : o.x)
+      if (!fits(x)) return false;
+    if (p.power_law && o.power_weight != 0.0 && !(o.power_base > 0 && fits(o.power_base)))
+      return false;
+  }
+  return true;
+}
+
 double predict(const Problem& p, const std::vector<double>& v, const Observation& o) {
   double sum = power_law_value(p, v, o);
   for (std::size_t j = 0; j < p.parameters.size(); ++j)
@@ -131,6 +149,10 @@ double predict(const Problem& p, const std::vector<double>& v, const Observation
 
 double linear_least_squares(const Problem& p, std::vector<double>& values,
                             std::vector<bool>* determined) {
+  if (!solvable(p)) {
+    if (determined) determined->assign(p.parameters.size(), false);
+    return std::nan("");
+  }
   const std::size_t n = p.observations.size();
   std::vector<std::size_t> candidates;
   for (std::size_t j = 0; j < p.parameters.size(); ++j)
@@ -161,6 +183,7 @@ double linear_least_squares(const Problem& p, std::vector<double>& values,
 }
 
 double nonnegative_least_squares(const Problem& p, std::vector<double>& values) {
+  if (!solvable(p)) return std::nan("");
   std::vector<std::size_t> free;
   for (std::size_t j = 0; j < p.parameters.size(); ++j)
     if (!p.parameters[j].held && !is_power_law_parameter(p, j)) free.push_back(j);
@@ -191,6 +214,11 @@ double nonnegative_least_squares(const Problem& p, std::vector<double>& values) 
 FitReport solve(const Problem& problem, const std::string& what) {
   FitReport report;
   report.what = what;
+  if (!solvable(problem)) {
+    report.points = problem.observations.size();
+    report.refused = "a value beyond what the fit can take (not finite, or above 1e100)";
+    return report;
+  }
   const std::size_t np = problem.parameters.size();
   const std::vector<bool> unused = unused_parameters(problem);
   std::vector<double> q(np);
@@ -250,6 +278,12 @@ FitReport solve(const Problem& problem, const std::string& what) {
   std::vector<double> values(np);
   for (std::size_t j = 0; j < np; ++j)
     values[j] = q[j] * problem.parameters[j].scale;
+  for (double v : values)
+    if (!std::isfinite(v)) {
+      report.refused = "the solver ended on a value that is not finite: the data do not "
+                       "describe the model";
+      return report;
+    }
   double mean_y = 0;
   for (const Observation& o : problem.observations)
     mean_y += o.y;

@@ -44,6 +44,11 @@ struct Problem {
   int max_iterations = 200;
 };
 
+// Whether every number of the problem is finite and within 1e100 in size (a power law's base
+// above 0): what the solvers below can take. solve refuses the rest, the least-squares helpers
+// return NaN for it and leave the values alone.
+bool solvable(const Problem& problem);
+
 // Solves, then reports every parameter with its standard error.
 FitReport solve(const Problem& problem, const std::string& what);
 

@@ -187,8 +187,22 @@ bool check_program(const SourceFile& source, std::size_t budget, Estimate& e) {
 // A text with lines of code but not one word a controller reads (a passwd file, prose) holds no
 // G-code: refused rather than annotated as a program that takes no time.
 // The interpreter's warnings about each of its words say nothing more: only the first is kept.
+//
+// A file with no line of code at all, only comments, '%' lines or blank lines (a setup sheet saved
+// as .ngc, an empty post), is no program either: there is nothing to estimate, and a controller
+// runs nothing from it (LinuxCNC refuses it: "File ended with no percent sign or program end").
+// It is refused the same way, exit 2, rather than annotated with a header of zeros.
 void check_holds_gcode(const InterpretResult& run, Estimate& e) {
-  if (run.word_blocks > 0 || run.blocks == 0) return;
+  if (run.word_blocks > 0) return;
+  if (run.blocks == 0) {
+    e.diagnostics.clear(); // "no M2" and the like say nothing more
+    e.diagnostics_dropped = 0;
+    e.diagnostics.push_back({Severity::Error, e.file, 0, 0,
+                             "holds no block to run: only comments, '%' lines or blank lines (a "
+                             "setup sheet, or an empty post?), so there is nothing to estimate"});
+    e.failed = true;
+    return;
+  }
   const auto first = std::find_if(e.diagnostics.begin(), e.diagnostics.end(),
                                   [](const Diagnostic& d) { return d.line > 0; });
   std::vector<Diagnostic> kept;

@@ -2,6 +2,7 @@
 // estimate.hpp). Every error names the file, the line and column, and the key.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "ncjoule/machine.hpp"
 #include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
+#include "ncjoule/tool.hpp"
 
 namespace ncjoule {
 namespace {
@@ -45,8 +47,9 @@ struct JobReader {
     return (std::filesystem::path(path).parent_path() / p).lexically_normal().string();
   }
 
+  // A number within [lowest, highest] (what the thing it stands for can physically be).
   std::optional<double> number(const toml::table& table, std::string_view key,
-                               const std::string& where) {
+                               const std::string& where, double lowest, double highest) {
     const toml::node* node = table.get(key);
     if (!node) return std::nullopt;
     const std::string name = where + std::string(key);
@@ -54,7 +57,18 @@ struct JobReader {
       error(node, name, "must be a number");
       return std::nullopt;
     }
-    return node->value<double>();
+    const double value = *node->value<double>();
+    if (!(value >= lowest && value <= highest)) {
+      error(node, name,
+            "must be a number from " + format_limit(lowest) + " to " + format_limit(highest));
+      return std::nullopt;
+    }
+    return value;
+  }
+  static std::string format_limit(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
   }
 
   // `stock` (a box or STL spec) or `stock_stl` (a path) of `table`, keys named after `where`.
@@ -112,9 +126,12 @@ struct JobReader {
     }
     ToolFields fields;
     const toml::node* number = t->get("number");
-    if (!number || !number->is_integer() || number->value<std::int64_t>() < 0)
+    // As --tool takes them: a number past the largest would wrap into another tool's.
+    if (!number || !number->is_integer() || *number->value<std::int64_t>() < 0 ||
+        *number->value<std::int64_t>() > kMaxToolNumber)
       return error(number ? number : &node, where + "number",
-                   "must be a whole tool number (e.g. number = 1)");
+                   "must be a whole tool number from 0 to " + std::to_string(kMaxToolNumber) +
+                       " (e.g. number = 1)");
     fields.number = int(*number->value<std::int64_t>());
     const std::string tool_name =
         "tool[" + std::to_string(index + 1) + "] (T" + std::to_string(fields.number) + ").";
@@ -123,16 +140,19 @@ struct JobReader {
       return error(type ? type : &node, tool_name + "type",
                    "must be one of \"flat\", \"ball\", \"bullnose\", \"drill\", \"chamfer\"");
     fields.type = *type->value<std::string>();
-    const std::optional<double> diameter = this->number(*t, "diameter_mm", tool_name);
-    if (!diameter || !(*diameter > 0))
-      return error(t->get("diameter_mm") ? t->get("diameter_mm") : &node, tool_name + "diameter_mm",
-                   "must be given, in mm, above 0");
+    // Lengths from a micrometre to two metres, angles within (0, 180]: as --tool takes them.
+    const std::optional<double> diameter = this->number(*t, "diameter_mm", tool_name, 0.001, 2000);
+    if (!diameter) {
+      if (!t->get("diameter_mm"))
+        error(&node, tool_name + "diameter_mm", "must be given, in mm, from 0.001 to 2000");
+      return;
+    }
     fields.diameter_mm = *diameter;
-    fields.corner_radius_mm = this->number(*t, "corner_radius_mm", tool_name);
-    fields.point_angle_deg = this->number(*t, "point_angle_deg", tool_name);
-    fields.tip_diameter_mm = this->number(*t, "tip_diameter_mm", tool_name);
-    fields.flute_length_mm = this->number(*t, "flute_length_mm", tool_name);
-    fields.shank_diameter_mm = this->number(*t, "shank_diameter_mm", tool_name);
+    fields.corner_radius_mm = this->number(*t, "corner_radius_mm", tool_name, 0, 1000);
+    fields.point_angle_deg = this->number(*t, "point_angle_deg", tool_name, 1, 180);
+    fields.tip_diameter_mm = this->number(*t, "tip_diameter_mm", tool_name, 0, 2000);
+    fields.flute_length_mm = this->number(*t, "flute_length_mm", tool_name, 0.001, 2000);
+    fields.shank_diameter_mm = this->number(*t, "shank_diameter_mm", tool_name, 0.001, 2000);
     if (const toml::node* z = t->get("flutes")) {
       if (!z->is_integer() || z->value<std::int64_t>() < 1 || z->value<std::int64_t>() > 100)
         return error(z, tool_name + "flutes", "must be a whole number from 1 to 100");
@@ -226,11 +246,13 @@ std::optional<JobFile> parse_job_file(std::string_view text, const std::string& 
       const toml::array* xyz = value.as_array();
       std::optional<double> v[3];
       for (std::size_t i = 0; xyz && xyz->size() == 3 && i < 3; ++i)
-        if (auto n = xyz->get(i)->value<double>(); n && std::isfinite(*n)) v[i] = n;
+        if (auto n = xyz->get(i)->value<double>(); n && std::isfinite(*n) && std::abs(*n) <= 1e5)
+          v[i] = n;
       if (index == 0)
         reader.error(&value, where, "names no work offset: G54 to G59, G59.1 to G59.3");
       else if (!v[0] || !v[1] || !v[2])
-        reader.error(&value, where, "must be [X, Y, Z], the origin's machine coordinates in mm");
+        reader.error(&value, where,
+                     "must be [X, Y, Z], the origin's machine coordinates in mm (within 100 m)");
       else
         job.work_offsets[index] = Pose{*v[0], *v[1], *v[2], 0, 0, 0};
     }

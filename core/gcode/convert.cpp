@@ -23,6 +23,14 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
     note(0, "block skipped");
     return;
   }
+  // L is a whole number wherever it is read (a repeat count, G10's data code): LinuxCNC refuses
+  // the block ("Non integer value for integer"), Fanuc alarms on a decimal point in it.
+  if (v.has('l') && std::abs(*v['l'] - std::round(*v['l'])) > 1e-4) {
+    error(v.column['l' - 'a'], "L" + number_text(*v['l']) +
+                                   " is not a whole number: L counts repeats (or names G10's "
+                                   "data), and controls refuse a fraction; block skipped");
+    return;
+  }
   // Words of several letters (Sinumerik frames and cycles, ...), before any motion.
   std::optional<SinumerikCycle> cycle_now;
   if (!b.keywords.empty()) keywords(b, v, cycle_now);
@@ -43,6 +51,7 @@ void Interpreter::execute(const Block& b, BlockValues& v) {
   convert_coordinate_system(v);             // 15
   convert_path_control(v);                  // 16
   convert_distance_modes(v);                // 17, 18
+  polar_words(v);                           // G16: radius and angle to X, Y
   const bool axes_used = convert_group0(v); // 19
   set_motion_mode(v);                       // 20
   convert_motion(v, axes_used);
@@ -102,11 +111,13 @@ void Interpreter::convert_other_codes(const BlockValues& v) {
       if (inch != state_.inch) state_.inch = inch, emit_simple(CanonKind::LengthUnits);
       continue;
     }
+    if (code == 150 || code == 160) {
+      polar_mode(code == 160, v.g_column(code));
+      continue;
+    }
     switch (code) {
     case 70:
     case 80:
-    case 150:
-    case 160:
     case 960:
     case 970:
     case 911:

@@ -1,7 +1,10 @@
-// The controller dialects ncjoule knows, as data, and guessing one from a file.
+// The controller dialects ncjoule knows, as data, and telling one from a file's code.
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstring>
+#include <string_view>
+#include <vector>
 
 #include "ncjoule/gcode.hpp"
 #include "ncjoule/text.hpp"
@@ -32,6 +35,8 @@ std::vector<Dialect> make_dialects() {
   fanuc.max_line_length = 128;
   fanuc.canned_cycle_group = true;
   fanuc.last_code_of_group_wins = true;
+  // G15/G16 polar coordinate command (Fanuc Series 16/18 Operator's Manual, 9.2).
+  fanuc.polar_g16 = true;
   // The builders' M codes differ; a rotary table's clamp and unclamp (M10/M11) is what Fanuc-
   // controlled mills with a 4th axis share, and what CAM posts for them write around every index.
   fanuc.machine_m_codes = {10, 11};
@@ -77,6 +82,9 @@ std::vector<Dialect> make_dialects() {
   mach3.canned_cycle_group = true;
   mach3.last_code_of_group_wins = true;
   mach3.zero_radius_circle_is_no_motion = true;
+  // G16 polar mode about the point where G16 was read (Mach3's "G16 polar origin").
+  mach3.polar_g16 = true;
+  mach3.polar_pole_at_g16 = true;
   all.push_back(mach3);
 
   Dialect siemens;
@@ -94,6 +102,7 @@ std::vector<Dialect> make_dialects() {
   siemens.g70_g71_units = true; // G70/G700 inch, G71/G710 mm
   siemens.canned_cycle_group = true;
   siemens.last_code_of_group_wins = true;
+  siemens.polar_g16 = true; // ISO mode's G15/G16, as Fanuc
   all.push_back(siemens);
 
   Dialect heidenhain;
@@ -133,30 +142,90 @@ const std::vector<Dialect>& dialects() {
   return all;
 }
 
-// ncjoule's own annotations ("(NCJ ... CK=XXXXXX)", "; NCJ ...") name the dialect they were
-// written for: they must not tell it again. Expects lower case.
-std::string without_annotations(std::string line) {
-  for (std::size_t at; (at = line.find("(ncj ")) != std::string::npos;) {
-    const std::size_t close = line.find(')', at);
-    line.erase(at, close == std::string::npos ? std::string::npos : close - at + 1);
+// A line split as dialect detection reads it: its code, and the text of its comments ("( )" and
+// ';' to the end of the line; the Fanuc family's ';' ends the block, and what follows it is no
+// code either). Lower case. A Sinumerik call's argument list reads as a comment here: its name
+// stays in the code, which is what the clues look at.
+struct SplitLine {
+  std::string code;
+  std::vector<std::string> comments;
+};
+
+SplitLine split_line(const std::string& line) {
+  SplitLine out;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    const char c = line[i];
+    if (c == ';') {
+      out.comments.push_back(line.substr(i + 1));
+      break;
+    }
+    if (c == '(') {
+      const std::size_t close = line.find(')', i + 1);
+      out.comments.push_back(
+          line.substr(i + 1, close == std::string::npos ? std::string::npos : close - i - 1));
+      if (close == std::string::npos) break;
+      out.code += ' ';
+      i = close + 1;
+      continue;
+    }
+    out.code += c;
+    ++i;
   }
-  for (const char* marker : {";ncj ", "; ncj "})
-    if (const std::size_t at = line.find(marker); at != std::string::npos) line.erase(at);
-  return line;
+  return out;
 }
 
-// Whether `line` (lower case) holds the word `code` ("m31") not followed by a digit or '.'
-// (M310, M31.5 are other codes) nor preceded by a letter (a word inside a name).
-bool has_code(const std::string& line, const char* code) {
-  const std::size_t n = std::char_traits<char>::length(code);
-  for (std::size_t at = line.find(code); at != std::string::npos; at = line.find(code, at + 1)) {
-    const bool letter_before = at > 0 && std::isalpha(static_cast<unsigned char>(line[at - 1]));
+// Whether `code` (lower case) holds the word `word` ("m31", "g65") not followed by a digit or
+// '.' (M310, M31.5 are other codes) nor preceded by a letter (a word inside a name).
+bool has_code(const std::string& code, std::string_view word) {
+  for (std::size_t at = code.find(word); at != std::string::npos; at = code.find(word, at + 1)) {
+    const bool letter_before = at > 0 && std::isalpha(static_cast<unsigned char>(code[at - 1]));
+    const std::size_t after = at + word.size();
     const bool digit_after =
-        at + n < line.size() &&
-        (std::isdigit(static_cast<unsigned char>(line[at + n])) || line[at + n] == '.');
+        after < code.size() &&
+        (std::isdigit(static_cast<unsigned char>(code[after])) || code[after] == '.');
     if (!letter_before && !digit_after) return true;
   }
   return false;
+}
+
+// Whether `code` holds `word` as a word of its own (not inside a longer name).
+bool has_word(const std::string& code, std::string_view word) {
+  for (std::size_t at = code.find(word); at != std::string::npos; at = code.find(word, at + 1)) {
+    const std::size_t after = at + word.size();
+    const bool before_ok = at == 0 || !std::isalnum(static_cast<unsigned char>(code[at - 1]));
+    const bool after_ok =
+        after >= code.size() || !std::isalnum(static_cast<unsigned char>(code[after]));
+    if (before_ok && after_ok) return true;
+  }
+  return false;
+}
+
+// Whether a comment is a post processor's statement about itself: "(Post Processor:
+// PathScripts.post.grbl_post)", "(Created with grbl post processor ...)", "; Posts processor:
+// MPCNC.cps", "(Mach3 post)", "(G-code generated for UCCNC controller ...)". Only such a
+// statement names the control a program was written for; a customer's, a part's or a machine's
+// name in another comment ("CUSTOMER: SIEMENS AG", "HOLES FOR THE HAAS TRUNNION") does not.
+bool is_post_signature(const std::string& comment) {
+  for (std::string_view phrase :
+       {"post processor", "postprocessor", "post-processor", "posts processor", "post processed",
+        "post-processed", "post:", "post name"})
+    if (comment.find(phrase) != std::string::npos) return true;
+  if (comment.find("generated for") != std::string::npos &&
+      comment.find("control") != std::string::npos)
+    return true;
+  // "(Mach3 post)": a short comment that ends with the word "post".
+  std::vector<std::string_view> words;
+  std::string_view rest = comment;
+  while (!rest.empty()) {
+    const std::size_t begin = rest.find_first_not_of(" \t");
+    if (begin == std::string_view::npos) break;
+    rest.remove_prefix(begin);
+    const std::size_t end = std::min(rest.find_first_of(" \t"), rest.size());
+    words.push_back(rest.substr(0, end));
+    rest.remove_prefix(end);
+  }
+  return !words.empty() && words.size() <= 3 && words.back() == "post";
 }
 
 } // namespace
@@ -181,27 +250,62 @@ std::vector<std::string> dialect_names() {
 }
 
 DialectChoice choose_dialect(const SourceFile& source) {
-  // Look at the first few hundred lines only: posts put the tell-tale lines up front. Names in
-  // the header comments (FreeCAD writes "Post Processor: ...grbl_post", other CAM systems the
-  // machine or control) count as much as syntax. The first clue for each dialect is kept to
-  // say why it was chosen.
+  // Look at the first few hundred lines only: posts put the tell-tale lines up front. The dialect
+  // is decided by the code (words and codes only some families have, a program header's form,
+  // grbl's '$' lines, Heidenhain's '*' block ends) and by the post processor's signature in the
+  // header's comments, never by other free text in comments: a customer's or a machine's name
+  // is no clue. The first clue for each dialect is kept to say why it was chosen.
   enum Family { LinuxCnc, Siemens, Heidenhain, Haas, Grbl, RepRap, Mach, Fanuc, kFamilies };
   static constexpr const char* kNames[kFamilies] = {"linuxcnc", "siemens", "heidenhain", "haas",
                                                     "grbl",     "reprap",  "mach3",      "fanuc"};
   std::array<std::string, kFamilies> clue;
   const std::size_t limit = std::min<std::size_t>(source.lines.size(), 400);
-  auto has = [](const std::string& l, const char* what) {
-    return l.find(what) != std::string::npos;
-  };
+  // The header: the lines before the first that moves an axis, where a post describes itself.
+  bool in_header = true;
+  // Fusion's posts describe the machine they post for in a block of their own ("(Machine)",
+  // "(  vendor: HAAS)", "(  model: ...)"): the vendor line there is the post's statement too.
+  std::size_t machine_block = 0; // lines left in such a block
   for (std::size_t i = 0; i < limit; ++i) {
-    std::string l = without_annotations(to_lower(source.line_text(i)));
+    const SplitLine split = split_line(to_lower(source.line_text(i)));
+    std::string l = split.code;
     const std::size_t first = l.find_first_not_of(" \t");
-    if (first == std::string::npos) continue;
-    l.erase(0, first);
+    const std::size_t last = l.find_last_not_of(" \t\r");
+    l = first == std::string::npos ? std::string() : l.substr(first, last - first + 1);
     const std::string at = " at line " + std::to_string(i + 1);
     auto vote = [&](Family f, const std::string& what) {
       if (clue[f].empty()) clue[f] = what + at;
     };
+    if (in_header) {
+      for (const std::string& comment : split.comments) {
+        const std::string_view text = trim(comment);
+        if (text == "machine") {
+          machine_block = 4;
+          continue;
+        }
+        const bool vendor = machine_block > 0 && text.rfind("vendor", 0) == 0;
+        // ncjoule's own header names the dialect it was written for: it does not tell it again.
+        if (comment.rfind("ncj ", 0) == 0 || (!vendor && !is_post_signature(comment))) continue;
+        auto named = [&](std::initializer_list<const char*> words) {
+          for (const char* w : words)
+            if (comment.find(w) != std::string::npos) return true;
+          return false;
+        };
+        const std::string signature =
+            vendor ? "the post's machine block" : "the post processor's signature";
+        if (named({"fanuc"})) vote(Fanuc, "'fanuc' in " + signature);
+        if (named({"haas"})) vote(Haas, "'haas' in " + signature);
+        if (named({"mach3", "mach4", "uccnc", "uc-cnc"})) vote(Mach, "'mach3' in " + signature);
+        if (named({"grbl", "jtech"})) vote(Grbl, "'grbl' in " + signature); // J Tech lasers
+        if (named({"linuxcnc", "emc2", "pathpilot", "tormach"}))
+          vote(LinuxCnc, "'linuxcnc' in " + signature);
+        if (named({"sinumerik", "siemens"})) vote(Siemens, "'sinumerik' in " + signature);
+        if (named({"heidenhain"})) vote(Heidenhain, "'heidenhain' in " + signature);
+        if (named({"marlin", "rrf_post", "reprap", "smoothie"}))
+          vote(RepRap, "'marlin' in " + signature);
+      }
+    }
+    if (machine_block > 0) --machine_block;
+    if (l.empty()) continue;
     if (l[0] == '$') vote(Grbl, "'$' settings line");
     if (l[0] == 'o' && l.size() > 1 && std::isdigit(static_cast<unsigned char>(l[1]))) {
       // An O-number alone (maybe with a comment) is a Fanuc program header; followed by a
@@ -211,38 +315,37 @@ DialectChoice choose_dialect(const SourceFile& source) {
         ++k;
       while (k < l.size() && (l[k] == ' ' || l[k] == '\t'))
         ++k;
-      if (k == l.size() || l[k] == '(' || l[k] == ';')
+      if (k == l.size())
         vote(Fanuc, "O-number program header");
       else
         vote(LinuxCnc, "O-word with a keyword");
     }
     if (l.rfind("o<", 0) == 0) vote(LinuxCnc, "named O-word");
-    if (has(l, "#<")) vote(LinuxCnc, "named parameter");
-    if (has(l, "m98")) vote(Fanuc, "M98 subprogram call");
-    if (has(l, "g65")) vote(Fanuc, "G65 macro call");
-    if (has(l, "fanuc")) vote(Fanuc, "'fanuc' in the text");
-    if (has(l, "g187")) vote(Haas, "G187");
-    if (has(l, "m97")) vote(Haas, "M97 local subprogram call");
+    if (l.find("#<") != std::string::npos) vote(LinuxCnc, "named parameter");
+    if (has_code(l, "m98")) vote(Fanuc, "M98 subprogram call");
+    if (has_code(l, "g65")) vote(Fanuc, "G65 macro call");
+    if (has_code(l, "g187")) vote(Haas, "G187");
+    if (has_code(l, "m97")) vote(Haas, "M97 local subprogram call");
     // Chip auger and through-spindle coolant: Haas's own M codes, which its posts write.
     for (const char* code : {"m31", "m33", "m88", "m89"})
       if (has_code(l, code)) vote(Haas, "Haas code " + to_upper(code));
-    if (has(l, "haas")) vote(Haas, "'haas' in the text");
-    if (has(l, "mach3") || has(l, "mach4")) vote(Mach, "'mach3/mach4' in the text");
-    if (has(l, "uccnc")) vote(Mach, "'uccnc' in the text");
-    if (has(l, "grbl") || has(l, "jtech")) vote(Grbl, "'grbl' in the text"); // J Tech lasers
-    if (has(l, "linuxcnc") || has(l, "emc2")) vote(LinuxCnc, "'linuxcnc' in the text");
-    if (has(l, "pathpilot") || has(l, "tormach")) vote(LinuxCnc, "'tormach' in the text");
-    if (has(l, "mcall")) vote(Siemens, "MCALL");
-    if (has(l, "cycle8")) vote(Siemens, "CYCLE8x call");
-    if (has(l, "sinumerik") || has(l, "siemens")) vote(Siemens, "'sinumerik' in the text");
+    if (l.find("mcall") != std::string::npos) vote(Siemens, "MCALL");
+    // Sinumerik's own language: declarations, subprogram definitions, inch feeds (G700/G710),
+    // the machine-coordinate word SUPA.
+    for (const char* word : {"extern ", "def ", "proc "})
+      if (l.rfind(word, 0) == 0) vote(Siemens, to_upper(std::string(word, std::strlen(word) - 1)));
+    if (has_code(l, "g700") || has_code(l, "g710")) vote(Siemens, "G700/G710");
+    if (has_word(l, "supa")) vote(Siemens, "SUPA");
+    if (l.find("cycle8") != std::string::npos) vote(Siemens, "CYCLE8x call");
     if (l.rfind("trans ", 0) == 0) vote(Siemens, "TRANS frame");
-    if (has(l, "g291") || has(l, "g290")) vote(Siemens, "G290/G291");
+    if (has_code(l, "g291") || has_code(l, "g290")) vote(Siemens, "G290/G291");
     // Heidenhain ISO: "%NAME G71 *" headers, blocks ending in '*'.
-    if (l[0] == '%' && (has(l, "g70") || has(l, "g71"))) vote(Heidenhain, "'%NAME G71' header");
-    if (has(l, "heidenhain")) vote(Heidenhain, "'heidenhain' in the text");
+    if (l[0] == '%' && (has_code(l, "g70") || has_code(l, "g71")))
+      vote(Heidenhain, "'%NAME G71' header");
     if (l.size() > 1 && l.back() == '*' && l[0] == 'n') vote(Heidenhain, "block ending in '*'");
-    if (has(l, "marlin") || has(l, "rrf_post") || has(l, "reprap") || has(l, "smoothie"))
-      vote(RepRap, "'marlin/reprap' in the text");
+    // The header ends where the program starts moving.
+    for (char axis : {'x', 'y', 'z'})
+      if (l.find(axis) != std::string::npos) in_header = false;
   }
   // The first family in this order with a clue wins: the more specific before the more general.
   for (int f = 0; f < kFamilies; ++f)

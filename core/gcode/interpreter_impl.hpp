@@ -152,6 +152,11 @@ private:
 
   // --- motion (motion.cpp) -------------------------------------------------------------------
   Pose target_from_words(const BlockValues& v, bool machine_coordinates);
+  // Under G16: the plane's radius and angle words turned into the Cartesian words every move and
+  // cycle reads, in the block's distance mode.
+  void polar_words(BlockValues& v);
+  // G16 (on) and G15 (off), or a warning where the dialect has no polar coordinates.
+  void polar_mode(bool on, int column);
   // A straight move to `end`; `machine_axes` marks the axes sent to a machine position
   // (CanonCommand::machine_axes).
   void straight(CanonKind kind, const Pose& end, std::string text = {},
@@ -294,7 +299,11 @@ private:
   // The G0/G1/G2/G3 mode in force when the current canned cycle (or G80) began: what moves axis
   // words after G80 where canned cycles are a modal group of their own (Dialect).
   Motion motion_before_cycle_ = Motion::Rapid;
-  bool incremental_ = false;      // G91
+  bool incremental_ = false; // G91
+  // G16 polar coordinates: on, the pole (Mach3: where G16 was read) and the last angle given.
+  bool polar_ = false;
+  Pose polar_pole_;
+  double polar_angle_deg_ = 0;
   bool arc_incremental_ = true;   // G91.1
   bool retract_to_r_ = true;      // G99
   double naivecam_tolerance_ = 0; // G64 Q (else P): restored after canned cycles

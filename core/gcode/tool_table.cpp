@@ -1,9 +1,12 @@
 // Reading LinuxCNC tool tables: "T1 P1 Z1.5 D0.25 ;comment" lines.
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
+#include <string>
 
 #include "expression.hpp"
 #include "ncjoule/gcode.hpp"
+#include "ncjoule/tool.hpp"
 
 namespace ncjoule {
 
@@ -31,16 +34,38 @@ ToolTable parse_tool_table(const SourceFile& file, bool inch,
         ++q;
       double value = 0;
       if (!detail::parse_plain_number(line.substr(p + 1, q - p - 1), value)) {
-        diagnostics.push_back({Severity::Error, file.path, int(i) + 1, int(p) + 1,
-                               std::string("expected a number after '") + c + "'"});
+        diagnostics.push_back(
+            {Severity::Error, file.path, int(i) + 1, int(p) + 1,
+             std::string("expected a number after '") + c + "': the line is skipped"});
+        have_t = false;
         break;
       }
-      if (c == 'T')
-        entry.number = detail::saturate<int>(value), have_t = true;
-      else if (c == 'Z')
+      // Each value checked as a control would take it: a tool number in range (a larger one
+      // would wrap into another tool's), a diameter and an offset a tool can have.
+      auto refuse = [&](const std::string& why) {
+        diagnostics.push_back({Severity::Error, file.path, int(i) + 1, int(p) + 1, why});
+        have_t = false;
+      };
+      if (c == 'T') {
+        if (value < 0 || value != std::floor(value) || value > kMaxToolNumber) {
+          refuse("T must be a whole tool number from 0 to " + std::to_string(kMaxToolNumber) +
+                 ": the line is skipped");
+          break;
+        }
+        entry.number = int(value), have_t = true;
+      } else if (c == 'Z') {
+        if (std::abs(value * scale) > 1e5) {
+          refuse("Z: a tool length offset beyond 100 m is no tool's: the line is skipped");
+          break;
+        }
         entry.z_offset = value * scale;
-      else if (c == 'D')
+      } else if (c == 'D') {
+        if (value < 0 || value * scale > 2000) {
+          refuse("D must be a diameter from 0 to 2000 mm: the line is skipped");
+          break;
+        }
         entry.diameter = value * scale;
+      }
       p = q;
     }
     if (have_t) table[entry.number] = entry;

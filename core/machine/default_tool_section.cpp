@@ -11,7 +11,7 @@ Tool read_default_tool(TableReader table, std::vector<std::string>& sources) {
   fields.diameter_mm = table.quantity("diameter", Dimension::Length, Range::Positive);
   fields.corner_radius_mm =
       table.optional_quantity("corner_radius", Dimension::Length, Range::NonNegative);
-  fields.point_angle_deg = table.optional_number("point_angle_deg", Range::Positive);
+  fields.point_angle_deg = table.optional_number("point_angle_deg", Range::Positive, 1, 180);
   fields.tip_diameter_mm =
       table.optional_quantity("tip_diameter", Dimension::Length, Range::NonNegative);
   fields.description = table.optional_string("description").value_or("");

@@ -36,6 +36,7 @@ std::vector<std::pair<double, double>> read_spindle_times(TableReader& t, std::s
     const std::optional<double> s =
         pair && pair->size() == 2 ? (*pair)[1].value<double>() : std::nullopt;
     if (!rpm || !s || !std::isfinite(*rpm) || !std::isfinite(*s) || *rpm <= 0 || *s < 0 ||
+        *rpm > 3e5 || *s > 600 ||
         (!points.empty() && (*rpm <= points.back().first || *s < points.back().second)))
       t.fail(key, rule);
     points.emplace_back(*rpm, *s);

@@ -52,7 +52,8 @@ std::optional<std::vector<double>> numbers(const toml::node* node, std::size_t c
   std::vector<double> out;
   for (const toml::node& item : *list) {
     const std::optional<double> v = item.value<double>();
-    if (!v || !std::isfinite(*v)) return std::nullopt;
+    // A coordinate beyond 100 m is no machine's (a slip of units or of typing).
+    if (!v || !std::isfinite(*v) || std::abs(*v) > 1e5) return std::nullopt;
     out.push_back(*v);
   }
   return out;

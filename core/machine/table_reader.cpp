@@ -1,6 +1,7 @@
 #include "table_reader.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "ncjoule/profile.hpp"
 
@@ -71,6 +72,45 @@ double TableReader::checked(std::string_view key, const toml::node& node, double
   return *value * factor;
 }
 
+namespace {
+
+// A limit as the user reads it: %g, without an exponent below a million.
+std::string limit_text(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text,
+                std::abs(value) >= 1e-4 && std::abs(value) < 1e7 ? "%.10g" : "%g", value);
+  return text;
+}
+
+} // namespace
+
+void TableReader::check_plausible(std::string_view key, double value, double factor,
+                                  Dimension dimension, Range range) const {
+  if (value == 0) return;
+  const Plausible p = plausible(dimension);
+  const double magnitude = std::abs(value);
+  const bool negative_allowed = range == Range::Any && p.most_negative > 0;
+  if (magnitude >= p.smallest && ((value > 0 && value <= p.largest) ||
+                                  (value < 0 && negative_allowed && magnitude <= p.most_negative)))
+    return;
+  std::string allowed =
+      "from " + limit_text(p.smallest / factor) + " to " + limit_text(p.largest / factor);
+  if (negative_allowed)
+    allowed = "from " + limit_text(-p.most_negative / factor) + " to " +
+              limit_text(p.largest / factor) + " (or 0)";
+  else if (range != Range::Positive)
+    allowed += " (or 0)";
+  fail(key, limit_text(value / factor) + " is no machine's " + p.what + ": give one " + allowed +
+                " in the key's unit (a slip of units or of typing?)");
+}
+
+void TableReader::check_between(std::string_view key, double value, double lowest,
+                                double highest) const {
+  if (value >= lowest && value <= highest) return;
+  fail(key, limit_text(value) + " is outside what it can physically be: give one from " +
+                limit_text(lowest) + " to " + limit_text(highest));
+}
+
 std::optional<double> TableReader::optional_quantity(std::string_view stem, Dimension dimension,
                                                      Range range) {
   stems_.emplace(std::string(stem), dimension);
@@ -82,6 +122,7 @@ std::optional<double> TableReader::optional_quantity(std::string_view stem, Dime
     if (!node) continue;
     if (result) fail(key, "given twice, also as '" + path_of(found_key) + "'");
     result = checked(key, *node, u.to_internal, range);
+    check_plausible(key, *result, u.to_internal, dimension, range);
     found_key = key;
   }
   return result;
@@ -102,16 +143,21 @@ double TableReader::quantity(std::string_view stem, Dimension dimension, Range r
   return *value;
 }
 
-double TableReader::number(std::string_view key, Range range) {
+double TableReader::number(std::string_view key, Range range, double lowest, double highest) {
   const toml::node* node = find(key);
   if (!node) fail(key, "missing");
-  return checked(key, *node, 1.0, range);
+  const double value = checked(key, *node, 1.0, range);
+  if (!(range != Range::Positive && value == 0)) check_between(key, value, lowest, highest);
+  return value;
 }
 
-std::optional<double> TableReader::optional_number(std::string_view key, Range range) {
+std::optional<double> TableReader::optional_number(std::string_view key, Range range, double lowest,
+                                                   double highest) {
   const toml::node* node = find(key);
   if (!node) return std::nullopt;
-  return checked(key, *node, 1.0, range);
+  const double value = checked(key, *node, 1.0, range);
+  if (!(range != Range::Positive && value == 0)) check_between(key, value, lowest, highest);
+  return value;
 }
 
 std::optional<std::string> TableReader::optional_string(std::string_view key) {

@@ -27,9 +27,11 @@ public:
   // <stem>_<unit> for one unit of the dimension, converted to internal units.
   double quantity(std::string_view stem, Dimension dimension, Range range);
   std::optional<double> optional_quantity(std::string_view stem, Dimension dimension, Range range);
-  // A number whose unit is implied by the model it belongs to (Zhou's c3, c4, d1..d4).
-  double number(std::string_view key, Range range);
-  std::optional<double> optional_number(std::string_view key, Range range);
+  // A number whose unit is implied by the model it belongs to (Zhou's c3, c4, d1..d4), within
+  // [lowest, highest] where given (what the thing it stands for can physically be).
+  double number(std::string_view key, Range range, double lowest = -1e12, double highest = 1e12);
+  std::optional<double> optional_number(std::string_view key, Range range, double lowest = -1e12,
+                                        double highest = 1e12);
   std::string string(std::string_view key);
   std::optional<std::string> optional_string(std::string_view key);
   bool boolean(std::string_view key);
@@ -52,6 +54,11 @@ public:
 private:
   const toml::node* find(std::string_view key);
   double checked(std::string_view key, const toml::node& node, double factor, Range range);
+  // Fails unless `value` (in internal units, from a key written in units of `factor`) is in
+  // the dimension's physical range.
+  void check_plausible(std::string_view key, double value, double factor, Dimension dimension,
+                       Range range) const;
+  void check_between(std::string_view key, double value, double lowest, double highest) const;
 
   const toml::table& table_;
   std::string file_;

@@ -68,4 +68,42 @@ std::span<const UnitSuffix> units_of(Dimension dimension) {
   return {};
 }
 
+Plausible plausible(Dimension dimension) {
+  switch (dimension) {
+  case Dimension::Speed: // 0.06 mm/min to 600 m/min
+    return {0.001, 1e4, 0, "speed"};
+  case Dimension::Acceleration: // 0.001 g to 10 g
+    return {1, 1e5, 0, "acceleration"};
+  case Dimension::Jerk:
+    return {1, 1e9, 0, "jerk"};
+  case Dimension::Length: // a micrometre's thousandth to 100 m
+    return {1e-6, 1e5, 1e5, "length"};
+  case Dimension::Time: // up to an hour for one event (a tool change, a wait)
+    return {1e-6, 3600, 0, "time"};
+  case Dimension::RampTime:
+    return {1e-6, 600, 0, "spindle ramp"};
+  case Dimension::AngularSpeed:
+    return {0.001, 1e5, 0, "angular speed"};
+  case Dimension::AngularAccel:
+    return {0.01, 1e7, 0, "angular acceleration"};
+  // Powers: up to a megawatt (the largest machining centres draw a few hundred kW); a fitted
+  // line's intercept may be a little negative, never tens of kW.
+  case Dimension::Power:
+    return {1e-6, 1e6, 1e4, "power"};
+  case Dimension::PowerPerRpm: // 100 W per rpm is a megawatt at 10,000 rpm
+    return {1e-9, 100, 100, "power per rpm"};
+  case Dimension::PowerPerRpm2:
+    return {1e-15, 0.01, 0.01, "power per rpm^2"};
+  case Dimension::PowerPerSpeed: // a megawatt at 100 mm/s
+    return {1e-9, 1e4, 1e4, "power per mm/s"};
+  case Dimension::PowerPerMrr: // a specific cutting energy, J/mm^3: tens at most
+    return {1e-9, 1000, 1000, "power per mm^3/s"};
+  case Dimension::KiloWatt:
+    return {1e-9, 1000, 10, "power"};
+  case Dimension::KiloWattPerRpm:
+    return {1e-12, 0.1, 0.1, "power per rpm"};
+  }
+  return {0, 1e12, 1e12, "value"};
+}
+
 } // namespace ncjoule::profile_detail

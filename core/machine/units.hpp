@@ -34,4 +34,15 @@ enum class Dimension {
 
 std::span<const UnitSuffix> units_of(Dimension dimension);
 
+// What a machine's quantity of a dimension can physically be, in internal units: a value outside
+// is a slip (of units, of typing: 1e-300 m/s^2, -1e6 W) that would give absurd times and energies
+// rather than an error. Zero passes where the key allows it ("none").
+struct Plausible {
+  double smallest;      // smallest magnitude other than zero
+  double largest;       // largest positive value
+  double most_negative; // largest magnitude of a negative value, where the key allows one
+  const char* what;     // "acceleration", for the message
+};
+Plausible plausible(Dimension dimension);
+
 } // namespace ncjoule::profile_detail

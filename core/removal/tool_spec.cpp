@@ -81,8 +81,10 @@ std::optional<Tool> parse_tool_spec(std::string_view text, std::vector<Diagnosti
     return fail("a tool is N:TYPE:DIAMETER, e.g. 1:flat:6, 2:ball:6, 3:drill:6.8:118");
   ToolFields fields;
   const std::optional<double> number = parse_number(f[0]);
-  if (!number || *number < 0 || *number != std::floor(*number) || *number > 1e6)
-    return fail("tool number '" + std::string(f[0]) + "' is not a whole number", f[0]);
+  if (!number || *number < 0 || *number != std::floor(*number) || *number > kMaxToolNumber)
+    return fail("tool number '" + std::string(f[0]) + "' is not a whole number from 0 to " +
+                    std::to_string(kMaxToolNumber),
+                f[0]);
   fields.number = int(*number);
   fields.type = std::string(f[1]);
   const auto shape = tool_shape_from_name(f[1]);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <sstream>
 
+#include "ncjoule/diagnostic.hpp"
 #include "ncjoule/report.hpp"
 
 namespace ncjoule {
@@ -55,7 +56,7 @@ void row(std::string& out, const LineSummary& b, const Estimate& e) {
   out.append(line_kind_name(b.kind));
   out.push_back(',');
   if (b.operation > 0 && b.operation <= e.operations.size())
-    quoted(out, e.operations[b.operation - 1].name);
+    quoted(out, printable(e.operations[b.operation - 1].name)); // a comment: no raw ESC
   for (double v : {b.start_s, b.time_s}) {
     out.push_back(',');
     number(out, v);

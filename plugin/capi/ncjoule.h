@@ -125,9 +125,14 @@ const char* ncjoule_result_json(const ncjoule_result* result);
  * controller would refuse is annotated all the same, its header listing them. */
 char* ncjoule_annotate_string(ncjoule_context* context, const char* text, size_t length,
                               const char* name, size_t* out_length);
-/* Annotates the file at in_path into out_path (NULL or equal to in_path: in place). The output is
- * written to a temporary file and renamed into place, so on failure (non-zero return) the target
- * is as it was. Returns 0 on success. */
+/* Annotates the file at in_path into out_path (NULL, empty or the same file as in_path: in
+ * place). The output is written to a temporary file and renamed into place, so on failure
+ * (non-zero return) the target is as it was. Returns 0 on success.
+ * In place, the guards of `ncjoule annotate --in-place` hold (docs/annotation.md, "Writing
+ * files"): a symbolic link is refused (its target is never rewritten); a file another program
+ * still holds open for writing, or that changed while it was read and annotated (checked once
+ * the new text is on disk, right before the rename), is refused, as is a program without an end
+ * that has not been left alone for 2 seconds. */
 int ncjoule_annotate_file(ncjoule_context* context, const char* in_path, const char* out_path);
 
 /* Frees memory the library documents as the caller's. */

@@ -11,12 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "in_place.hpp"
 #include "ncjoule/annotate.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
 #include "ncjoule/text_file.hpp"
 #include "output_file.hpp"
+
+#include <sys/stat.h>
 
 struct ncjoule_context {
   ncjoule::MachineProfile machine;
@@ -65,9 +68,9 @@ ncjoule_result* make_result(ncjoule_context* context, const ncjoule::SourceFile&
   return result.release();
 }
 
-// The annotated text of a program, or nullopt with last_error set.
-std::optional<std::string> annotated_text(ncjoule_context* context, const std::string& name,
-                                          const std::string& text) {
+// The annotated program, or nullopt with last_error set.
+std::optional<ncjoule::AnnotatedProgram>
+annotated(ncjoule_context* context, const std::string& name, const std::string& text) {
   ncjoule::AnnotatedProgram result =
       ncjoule::annotate_program(name, text, context->machine, context->options);
   if (result.estimate.failed) {
@@ -77,7 +80,15 @@ std::optional<std::string> annotated_text(ncjoule_context* context, const std::s
     fail(name + " could not be estimated" + errors);
     return std::nullopt;
   }
-  return std::move(result.text);
+  return result;
+}
+
+// Whether two paths name the same existing file.
+bool same_file(const char* a, const char* b) {
+  struct stat sa {
+  }, sb{};
+  return ::stat(a, &sa) == 0 && ::stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+         sa.st_ino == sb.st_ino;
 }
 
 std::optional<std::string> read_file(const char* path) {
@@ -294,9 +305,10 @@ char* ncjoule_annotate_string(ncjoule_context* context, const char* text, size_t
                               const char* name, size_t* out_length) {
   if (!context || (!text && length)) return fail("no context or no text"), nullptr;
   return guarded<char*>(nullptr, [&]() -> char* {
-    auto annotated =
-        annotated_text(context, name ? name : "<string>", std::string(text ? text : "", length));
-    if (!annotated) return nullptr;
+    auto result =
+        annotated(context, name ? name : "<string>", std::string(text ? text : "", length));
+    if (!result) return nullptr;
+    const std::string* annotated = &result->text;
     char* out = static_cast<char*>(std::malloc(annotated->size() + 1));
     if (!out) return fail("out of memory"), nullptr;
     std::memcpy(out, annotated->data(), annotated->size());
@@ -309,14 +321,26 @@ char* ncjoule_annotate_string(ncjoule_context* context, const char* text, size_t
 int ncjoule_annotate_file(ncjoule_context* context, const char* in_path, const char* out_path) {
   if (!context || !in_path) return fail("no context or no input path"), -1;
   return guarded<int>(-1, [&] {
+    const bool in_place = !out_path || !*out_path || std::strcmp(out_path, in_path) == 0 ||
+                          same_file(in_path, out_path);
+    // In place, as `ncjoule annotate --in-place`: never a link's target, never a file another
+    // program is still writing (checked before the read and again right before the rename).
+    ncjoule::cli::FileStamp stamp;
+    if (in_place) {
+      if (std::string why = ncjoule::cli::in_place_refusal(in_path, false, stamp); !why.empty())
+        return fail(why + "; " + in_path + " is untouched"), -1;
+    }
     auto text = read_file(in_path);
     if (!text) return -1;
-    auto annotated = annotated_text(context, in_path, *text);
-    if (!annotated) return -1;
-    const std::string target = out_path && *out_path ? out_path : in_path;
-    if (const std::string error = ncjoule::cli::write_output_file(target, *annotated);
+    auto result = annotated(context, in_path, *text);
+    if (!result) return -1;
+    if (in_place && result->text == *text) return 0; // already annotated this way
+    const ncjoule::cli::InPlaceCheck check{stamp, result->estimate.program_end};
+    const std::string target = in_place ? in_path : out_path;
+    if (const std::string error = ncjoule::cli::write_output_file(
+            target, result->text, {in_place ? &check : nullptr, nullptr});
         !error.empty())
-      return fail(error), -1;
+      return fail(error + (in_place ? std::string("; ") + in_path + " is untouched" : "")), -1;
     return 0;
   });
 }

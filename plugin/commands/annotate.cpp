@@ -89,19 +89,17 @@ int run_annotate(const AnnotateCliOptions& o) {
   const int done = result.has_errors ? kInputError : kOk;
   const char* with_errors =
       result.has_errors ? ", with errors a controller would refuse (see above)" : "";
-  if (o.in_place) {
-    if (result.text == input->text) {
-      std::cerr << "ncjoule: " << printable(o.file) << " unchanged: already annotated this way"
-                << with_errors << '\n';
-      return done;
-    }
-    if (const std::string why = in_place_changed(o.file, stamp, result.estimate.program_end);
-        !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
-      return kOutputError;
-    }
+  if (o.in_place && result.text == input->text) {
+    std::cerr << "ncjoule: " << printable(o.file) << " unchanged: already annotated this way"
+              << with_errors << '\n';
+    return done;
   }
-  if (const int written = write_program(o.file, o.output, o.in_place, result.text); written != kOk)
+  // Replacing in place: checked again once the new text is on disk, right before the rename
+  // (output_file.hpp), so that a post appending meanwhile is never lost.
+  const InPlaceCheck check{stamp, result.estimate.program_end};
+  if (const int written =
+          write_program(o.file, o.output, o.in_place ? &check : nullptr, result.text);
+      written != kOk)
     return written;
   if (o.in_place)
     std::cerr << "ncjoule: annotated " << printable(o.file) << with_errors << '\n';

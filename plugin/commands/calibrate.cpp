@@ -88,7 +88,13 @@ struct Calibration {
   std::vector<std::string> fitted_files;
   bool fitted_any = false;
 
-  void use(const FitReport& fit, const std::string& file, const std::string& how = "") {
+  // False, with the reason said, when the data could not be fitted at all.
+  bool use(const FitReport& fit, const std::string& file, const std::string& how = "") {
+    if (!fit.refused.empty()) {
+      std::fprintf(stderr, "%s: error: %s: nothing fitted: %s\n", file.c_str(), fit.what.c_str(),
+                   fit.refused.c_str());
+      return false;
+    }
     print_report(fit);
     apply_fit(constants, fit);
     for (const FittedConstant& c : fit.constants) {
@@ -100,6 +106,7 @@ struct Calibration {
     }
     fitted_files.push_back(fit.what + " from " + file);
     fitted_any = true;
+    return true;
   }
 };
 
@@ -169,8 +176,10 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
   fit_options.max_offset_s = o.max_offset_s;
   fit_options.loss = *loss;
   const LogFitResult fit = fit_power_log(*log, trace, calibration.constants, fit_options);
-  if (fit.report.points == 0 || (!fit.report.converged && !fit.report.message.empty())) {
-    std::fprintf(stderr, "%s: the log fit failed: %s\n", o.log.c_str(), fit.report.message.c_str());
+  if (fit.report.points == 0 || !fit.report.refused.empty() ||
+      (!fit.report.converged && !fit.report.message.empty())) {
+    std::fprintf(stderr, "%s: the log fit failed: %s\n", o.log.c_str(),
+                 (fit.report.refused.empty() ? fit.report.message : fit.report.refused).c_str());
     return kInputError;
   }
   std::printf("%s: %zu samples over %.1f s; %s runs %.1f s on %s\n", o.log.c_str(), log->t_s.size(),
@@ -250,25 +259,28 @@ int run_calibrate(const CalibrateCliOptions& o) {
   if (!o.spindle.empty()) {
     auto t = read_table(o.spindle, kFieldRpm);
     if (!t) return kInputError;
-    calibration.use(fit_spindle(*t, baseline_w), o.spindle, above);
+    if (!calibration.use(fit_spindle(*t, baseline_w), o.spindle, above)) return kInputError;
   }
   for (int i = 0; i < 3; ++i) {
     if (o.axis[i].empty()) continue;
     auto t = read_table(o.axis[i], kFieldFeed);
     if (!t) return kInputError;
-    calibration.use(fit_axis_move(*t, static_cast<Axis>(i), with_baseline()), o.axis[i], above);
+    if (!calibration.use(fit_axis_move(*t, static_cast<Axis>(i), with_baseline()), o.axis[i],
+                         above))
+      return kInputError;
   }
   for (int i = 0; i < 3; ++i) {
     if (o.cut[i].empty()) continue;
     auto t = read_table(o.cut[i], kFieldRpm | kFieldFeed | kFieldMrr);
     if (!t) return kInputError;
-    calibration.use(fit_axis_cut(*t, static_cast<Axis>(i), with_baseline()), o.cut[i], above);
+    if (!calibration.use(fit_axis_cut(*t, static_cast<Axis>(i), with_baseline()), o.cut[i], above))
+      return kInputError;
   }
   if (!o.zhou.empty()) {
     auto t = read_table(o.zhou, kFieldRpm | kFieldMrr);
     if (!t) return kInputError;
-    calibration.use(fit_zhou_power(*t), o.zhou);
-    calibration.use(fit_zhou_sec(*t), o.zhou);
+    if (!calibration.use(fit_zhou_power(*t), o.zhou) || !calibration.use(fit_zhou_sec(*t), o.zhou))
+      return kInputError;
     set_zhou_fitted_ranges(constants.zhou, *t);
   }
   if (!o.log.empty()) {
@@ -316,16 +328,16 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_option("--tare-w", o->tare_w,
                   "Power with the machine on and idle, spindle off (W), written to the profile; "
                   "subtracted from the spindle and axis tables unless --baseline-w is given")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e6)); // W, up to 1 MW
   cmd->add_option("--baseline-w", o->baseline_w,
                   "Power state the spindle and axis table readings are taken above (W), e.g. "
                   "Pavanaskar's 375 W starting state; default: the tare. Not written to the "
                   "profile")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e6)); // W, up to 1 MW
   cmd->add_option("--coolant-w", o->coolant_w, "Coolant pump power (W)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e6)); // W, up to 1 MW
   cmd->add_option("--tool-change-w", o->tool_change_w, "Power above tare during a tool change (W)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 1e6)); // W, up to 1 MW
   cmd->add_option("--spindle", o->spindle,
                   "Spindle table: rpm, power -> KA_spindle + KB_spindle * n above tare")
       ->check(CLI::ExistingFile);

@@ -12,6 +12,7 @@
 
 #include "command_registry.hpp"
 #include "multi_estimate.hpp"
+#include "ncjoule/diagnostic.hpp"
 #include "ncjoule/duration.hpp"
 #include "ncjoule/report.hpp"
 
@@ -74,7 +75,11 @@ std::string diff_text(double diff, double pct, const char* unit, int decimals) {
 void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
                  RankBy by) {
   // A program whose figures rest on a guessed stock is marked '*' (its range is in the warnings).
+  // File names and operations' comments are printed escaped: no raw ESC or BEL reaches the
+  // terminal.
   std::vector<std::string> names = labels_of(ranked);
+  for (std::string& name : names)
+    name = printable(name);
   for (std::size_t i = 0; i < ranked.size(); ++i)
     if (ranked[i].totals.guess.guessed) names[i] += '*';
   std::size_t width = 7;
@@ -86,13 +91,14 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
     air.push_back(r.totals.air_cut_s);
   }
   const std::vector<std::string> time_cells = time_column(times), air_cells = time_column(air);
-  const std::string currency = ranked.front().totals.currency;
+  const std::string currency = printable(ranked.front().totals.currency);
   const char* order = by == RankBy::Time   ? "shortest time"
                       : by == RankBy::Cost ? "lowest cost"
                                            : "least energy";
-  std::printf("%zu alternatives on %s, %s first\n", ranked.size(), machine.name.c_str(), order);
+  std::printf("%zu alternatives on %s, %s first\n", ranked.size(), printable(machine.name).c_str(),
+              order);
   for (const std::string& warning : comparison_warnings(ranked))
-    std::printf("warning: %s\n", warning.c_str());
+    std::printf("warning: %s\n", printable(warning).c_str());
   // Inch programs compare in in^3 (and J/in^3), as their programmers read volumes.
   const bool inch = std::all_of(ranked.begin(), ranked.end(),
                                 [](const RankedProgram& r) { return r.totals.inch; });
@@ -161,13 +167,13 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
                   names[0].c_str());
     else if (by == RankBy::Cost)
       std::printf("%s costs %.4f %s more than %s", names[i].c_str(), r.cost_diff,
-                  r.totals.currency.c_str(), names[0].c_str());
+                  printable(r.totals.currency).c_str(), names[0].c_str());
     else
       std::printf("%s uses %.2f kJ more than %s: %s", names[i].c_str(), r.energy_diff_j / 1000,
                   names[0].c_str(), explain_difference(r).c_str());
     const std::string ops = explain_by_operation(r, ranked.front(), by);
     std::printf("%sby operation: %s\n", by == RankBy::Energy ? "; " : ": ",
-                ops.empty() ? "no operation differs" : ops.c_str());
+                ops.empty() ? "no operation differs" : printable(ops).c_str());
   }
 }
 

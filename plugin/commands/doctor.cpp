@@ -261,17 +261,20 @@ void check_user_config(Findings& f) {
 }
 
 // Writing here: annotate -o and --in-place write a temporary file next to the target and rename
-// it over the target. The check does both on a file of its own in the current folder.
+// it over the target. The check does both on a file of its own in the current folder, created
+// under a name nobody can guess and never through a link (a folder others may write in, such as
+// /tmp, may hold a link planted where a predictable name would be). Temporaries that runs killed
+// with SIGKILL left here are removed, and named.
 void check_write_here(Findings& f) {
   std::error_code ec;
   const fs::path here = fs::current_path(ec);
   const std::string folder = ec ? std::string(".") : here.string();
-#ifdef _WIN32
-  const std::string probe = ".ncjoule-doctor.tmp";
-#else
-  const std::string probe = ".ncjoule-doctor-" + std::to_string(::getpid()) + ".tmp";
-#endif
-  if (const std::string error = write_output_file(probe, "first\n"); !error.empty()) {
+  for (const std::string& removed : stale_temporaries(".", true))
+    f.note(removed, "an annotate or strip killed before it could finish left it (ncjoule removes "
+                    "such files itself the next time it writes in their folder)");
+  std::string probe;
+  if (const std::string error = create_new_file(".", ".ncjoule-doctor-", "first\n", probe);
+      !error.empty()) {
     f.note("cannot write a file in the current folder " + folder + ": " + error,
            "annotate -o and --in-place need a folder they may write in");
     return;

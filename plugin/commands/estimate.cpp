@@ -18,6 +18,7 @@
 #include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "estimate_settings.hpp"
+#include "ncjoule/diagnostic.hpp"
 #include "ncjoule/duration.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/profile.hpp"
@@ -46,9 +47,12 @@ std::string clock_text(double seconds) {
 void print_summary(const SourceFile& source, const MachineProfile& machine, const Estimate& e) {
   const EnergyResult& energy = e.energy;
   const TimeSplit& t = e.time;
-  std::printf("%s on %s\n", source.path.c_str(), machine.name.c_str());
-  std::printf("  dialect     %s\n",
-              describe_dialect_choice({e.dialect, e.dialect_origin, e.dialect_reason}).c_str());
+  // Names and comments from files (a path, a profile's name, a post's signature, an operation's
+  // comment) are printed escaped: an ESC or BEL in them must not drive the terminal.
+  std::printf("%s on %s\n", printable(source.path).c_str(), printable(machine.name).c_str());
+  std::printf(
+      "  dialect     %s\n",
+      printable(describe_dialect_choice({e.dialect, e.dialect_origin, e.dialect_reason})).c_str());
   std::printf("  model       %s\n", energy.model_description.c_str());
   std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(e.time_s).c_str(), e.time_s,
               e.lines.size());
@@ -84,11 +88,11 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
   if (energy.machine_cost > 0)
     std::printf("  CO2         %.4f kg%s, cost %.2f %s%s (machine time %.2f at %g/h, electricity "
                 "%.4f)\n",
-                energy.co2_kg, mark, energy.cost, energy.currency.c_str(), mark,
+                energy.co2_kg, mark, energy.cost, printable(energy.currency).c_str(), mark,
                 energy.machine_cost, energy.machine_rate_per_hour, energy.electricity_cost);
   else
     std::printf("  CO2         %.4f kg%s, cost %.4f %s%s\n", energy.co2_kg, mark, energy.cost,
-                energy.currency.c_str(), mark);
+                printable(energy.currency).c_str(), mark);
   if (guess.guessed) {
     const double volume_scale = e.inch ? 1 / kMm3PerIn3 : 1.0;
     const char* volume_unit = e.inch ? "in^3" : "mm^3";
@@ -124,14 +128,18 @@ void print_operations(const Estimate& e) {
   const std::vector<OperationSummary>& ops = e.operations;
   if (ops.empty()) return;
   std::size_t width = 9;
-  for (const OperationSummary& op : ops)
-    width = std::max(width, op.name.size());
+  std::vector<std::string> names; // from the program's comments: escaped
+  for (const OperationSummary& op : ops) {
+    names.push_back(printable(op.name));
+    width = std::max(width, names.back().size());
+  }
   std::printf("  by operation:\n");
   std::printf("    %-*s %4s %5s %14s %14s %10s %10s %7s\n", static_cast<int>(width), "operation",
               "tool", "line", "time", "air cutting", e.inch ? "in^3" : "mm^3", "kJ", "share");
-  for (const OperationSummary& op : ops) {
+  for (std::size_t k = 0; k < ops.size(); ++k) {
+    const OperationSummary& op = ops[k];
     std::printf("    %-*s %4s %5s %14s %14s %10.*f %10.1f %6.1f%%\n", static_cast<int>(width),
-                op.name.c_str(), op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
+                names[k].c_str(), op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-",
                 op.line >= 0 ? std::to_string(op.line + 1).c_str() : "-",
                 clock_text(op.time_s).c_str(),
                 e.removal ? clock_text(op.time.air_cut_s).c_str() : "-", e.inch ? 3 : 0,

@@ -21,6 +21,9 @@ int run_measure(const MeasureCliOptions& o) {
   const auto log = read_power_log(o.log, diagnostics);
   print_diagnostics(diagnostics);
   if (!log) return kInputError;
+  // No figures from a log with a bad cell: they would be the energy of another run.
+  for (const Diagnostic& d : diagnostics)
+    if (d.severity == Severity::Error) return kInputError;
   MeasureOptions options;
   if (o.idle_w >= 0) options.idle_w = o.idle_w;
   if (o.idle_from_first_s > 0) options.idle_from_first_s = o.idle_from_first_s;
@@ -35,8 +38,6 @@ int run_measure(const MeasureCliOptions& o) {
                 options.idle_from_first_s ? " (mean of the log's first seconds)" : "");
     std::printf("net energy     %.1f J (%.6f kWh)\n", m.net_energy_j, m.net_energy_j / 3.6e6);
   }
-  for (const Diagnostic& d : diagnostics)
-    if (d.severity == Severity::Error) return kInputError;
   return kOk;
 }
 
@@ -50,11 +51,11 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       ->check(CLI::ExistingFile);
   auto* idle = cmd->add_option("--idle-w", options->idle_w,
                                "Subtract this idle power (W) over the whole run")
-                   ->check(CLI::NonNegativeNumber);
+                   ->check(CLI::Range(0.0, 1e6)); // up to 1 MW, as a log's powers
   cmd->add_option("--idle-from-first", options->idle_from_first_s,
                   "Subtract the mean power of the log's first S seconds (machine idle before "
                   "the run, as Mora measured it)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1e-6, 1e10))
       ->excludes(idle);
   cmd->callback([options, &exit_code] { exit_code = run_measure(*options); });
 });

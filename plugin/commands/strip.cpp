@@ -36,18 +36,20 @@ int run_strip(const StripCliOptions& o) {
   }
   const auto input = read_source(o.file, std::size_t(o.input_limit_mib * 1024 * 1024));
   if (!input) return kInputError;
-  const std::string text = strip(input->text);
+  const StripResult stripped = strip_checked(input->text);
+  const std::string& text = stripped.text;
+  if (stripped.by_form)
+    std::cerr << "ncjoule: " << printable(input->path)
+              << ": its annotations no longer match the seal in its header (edited since it was "
+                 "annotated, or the header deleted): every comment in the annotations' form was "
+                 "taken out, a note of that form added since too\n";
   // A file without annotations is left alone, so that its time stamp does not change.
   if (o.in_place && text == input->text) return kOk;
-  // Stripping takes no time to speak of: only a writer that came or a change since the read
-  // are looked for, not a quiet period.
-  if (o.in_place) {
-    if (const std::string why = in_place_changed(o.file, stamp, true); !why.empty()) {
-      std::cerr << "ncjoule: " << why << "; " << printable(o.file) << " is untouched\n";
-      return kOutputError;
-    }
-  }
-  return write_program(o.file, o.output, o.in_place, text);
+  // Replacing in place: checked again once the new text is on disk, right before the rename.
+  // Stripping takes no time to speak of: only a writer that came or a change since the read are
+  // looked for, not a quiet period.
+  const InPlaceCheck check{stamp, true};
+  return write_program(o.file, o.output, o.in_place ? &check : nullptr, text);
 }
 
 const Registration registration([](CLI::App& app, int& exit_code) {

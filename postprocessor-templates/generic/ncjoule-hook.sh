@@ -17,7 +17,10 @@
 #   --quiet S           a file is taken once its size and time have not changed for S whole
 #                       seconds by the clock (default 3; $NCJOULE_QUIET)
 #   --once              watch mode: annotate what is in the folder now (once each file is
-#                       quiet), then exit
+#                       quiet), then exit; a file that keeps changing is given up after
+#                       --give-up seconds
+#   --give-up S         with --once: how long a file may keep changing before it is left
+#                       unannotated with a warning (default 60; $NCJOULE_GIVE_UP)
 #   --timeout S         watch mode: stop after S seconds (default: run until stopped)
 #   --strict            exit 1 when any file was not annotated (default: warn, exit 0)
 #   --                  the arguments after it are files, whatever they look like
@@ -43,6 +46,7 @@ stock=${NCJOULE_STOCK:-}
 ext_list=${NCJOULE_EXT:-"nc ngc tap cnc gcode nci mpf eia"}
 interval=${NCJOULE_INTERVAL:-2}
 quiet=${NCJOULE_QUIET:-3}
+give_up=${NCJOULE_GIVE_UP:-60}
 once=0
 timeout=0
 strict=0
@@ -83,7 +87,7 @@ add_extra() {
 
 while [ $# -gt 0 ]; do
   case $1 in
-    --machine | --ncjoule | --stock | --ext | --interval | --quiet | --timeout | --watch | --arg)
+    --machine | --ncjoule | --stock | --ext | --interval | --quiet | --timeout | --watch | --arg | --give-up)
       [ $# -ge 2 ] || die "$1 needs a value"
       case $1 in
         --machine) machine=$2 ;;
@@ -95,6 +99,7 @@ while [ $# -gt 0 ]; do
         --timeout) timeout=$2 ;;
         --watch) watch=$2 ;;
         --arg) arg_options+=("$2") ;;
+        --give-up) give_up=$2 ;;
       esac
       shift 2 ;;
     --once) once=1; shift ;;
@@ -112,6 +117,7 @@ done
 seconds --interval "$interval"
 whole_number --quiet "$quiet"
 whole_number --timeout "$timeout"
+whole_number --give-up "$give_up"
 
 # Split at blanks without a shell: read neither expands nor evaluates anything; globbing is off
 # all the same, in case a later change puts the words through the shell again.
@@ -260,16 +266,17 @@ signature() {
 
 # The state of a file: one small file in the state folder, named by a checksum of the name, so
 # that no character of a name (tab, newline, backslash) can confuse it. It holds
-# "STATUS SINCE TRIES SIGNATURE": STATUS is seen (waiting to be quiet), done, failed (both left
-# alone until the file changes) or link; SINCE the clock ($SECONDS) when the signature was first
-# seen; TRIES how often ncjoule found it still being written.
+# "STATUS SINCE TRIES FIRST SIGNATURE": STATUS is seen (waiting to be quiet), done, failed (both
+# left alone until the file changes) or link; SINCE the clock ($SECONDS) when the signature was
+# first seen; TRIES how often ncjoule found it still being written; FIRST the clock when the file
+# was first seen changing (--once gives it up after --give-up seconds).
 state_file() {
   local sum
   sum=$(printf '%s' "$1" | cksum)
   printf '%s/%s' "$state" "${sum// /_}"
 }
 
-save() { printf '%s %s %s %s\n' "$2" "$3" "$4" "$5" >"$1"; }
+save() { printf '%s %s %s %s %s\n' "$2" "$3" "$4" "$5" "$6" >"$1"; }
 
 # Timed out (--timeout)?
 over() { [ "$timeout" != 0 ] && [ "$SECONDS" -ge "$timeout" ]; }
@@ -277,20 +284,33 @@ over() { [ "$timeout" != 0 ] && [ "$SECONDS" -ge "$timeout" ]; }
 # One file of the folder at one look: recorded while it changes, taken once it has been quiet
 # for more than --quiet whole seconds (so at least that long, whatever the clock's rounding).
 consider() {
-  local f=$1 sf status="" since=0 tries=0 old="" sig
+  local f=$1 sf status="" since=0 tries=0 first=0 old="" sig
   sf=$(state_file "${f##*/}")
-  [ -f "$sf" ] && read -r status since tries old <"$sf"
+  [ -f "$sf" ] && read -r status since tries first old <"$sf"
   if [ -L "$f" ]; then
     # Never followed: a link in a watched folder can point at any file of the user's.
     [ "$status" = link ] || warn "$f is a symbolic link; it is not followed and not annotated"
     [ "$status" = link ] || failed=1
-    save "$sf" link 0 0 -
+    save "$sf" link 0 0 0 -
     return
   fi
   [ -f "$f" ] || return
   sig=$(signature "$f") || return
   if [ "$status" = link ] || [ "$sig" != "$old" ]; then
-    save "$sf" seen "$SECONDS" 0 "$sig"
+    # Given up on (--once): it stays so, however it goes on changing.
+    if [ $once -eq 1 ] && [ "$status" = failed ] && [ "$first" != 0 ]; then
+      save "$sf" failed 0 0 "$first" "$sig"
+      return
+    fi
+    # Changing: from when it was first seen so, unless it had been taken (done, failed) since.
+    case $status in seen) ;; *) first=$SECONDS ;; esac
+    if [ $once -eq 1 ] && [ $((SECONDS - first)) -ge "$give_up" ]; then
+      warn "$f not annotated: it kept changing for $give_up s (a program still writing it?)"
+      failed=1
+      save "$sf" failed 0 0 "$first" "$sig"
+      return
+    fi
+    save "$sf" seen "$SECONDS" 0 "$first" "$sig"
     pending=$((pending + 1))
     return
   fi
@@ -304,15 +324,15 @@ consider() {
   if [ "$outcome" = busy ]; then
     tries=$((tries + 1))
     if [ $once -eq 0 ] || [ $tries -lt $busy_tries ]; then
-      save "$sf" seen "$SECONDS" "$tries" "$sig" # later, once quiet again
+      save "$sf" seen "$SECONDS" "$tries" "$first" "$sig" # later, once quiet again
       pending=$((pending + 1))
       return
     fi
   fi
   report "$f"
   case $outcome in
-    annotated | unchanged | errors) save "$sf" "done" 0 0 "$sig" ;;
-    *) save "$sf" failed 0 0 "$sig" ;;
+    annotated | unchanged | errors) save "$sf" "done" 0 0 0 "$sig" ;;
+    *) save "$sf" failed 0 0 0 "$sig" ;;
   esac
 }
 

@@ -27,7 +27,7 @@ check_ "annotate: ... after the call" grep -qF 'CYCLE81(10,0,2,-5) ;NCJ T=' sinu
 check_ "annotate: ... after the expression" grep -qF 'G1 X10 Y=COS (0) F100 ;NCJ T=' sinumerik_annotated.mpf
 check_ "annotate: ... after the string" grep -qF 'G0 X1 MSG("a;b(c)") ;NCJ T=' sinumerik_annotated.mpf
 check_ "annotate: ... header after ;\$PATH, title" \
-  bash -c 'sed -n 3p sinumerik_annotated.mpf | grep -qx ";PART TITLE" && sed -n 4p sinumerik_annotated.mpf | grep -q "^;NCJ FILE KEY="'
+  bash -c 'sed -n 3p sinumerik_annotated.mpf | grep -qx ";PART TITLE" && sed -n 4p sinumerik_annotated.mpf | grep -q "^;NCJ SEAL "'
 check_ "annotate: ... strip gives it back" strips_back sinumerik_annotated.mpf sinumerik.mpf
 
 # An annotation copied from another annotated file, after a block and as a header line: the

@@ -53,7 +53,8 @@ TEST_CASE("the annotation goes before existing comments: MSG stays the last comm
   CHECK(after[3].substr(after[3].size() - 6) == " ;note");
 }
 
-TEST_CASE("with semicolon comments the annotation goes at the end of the code, after ( ) comments") {
+TEST_CASE(
+    "with semicolon comments the annotation goes at the end of the code, after ( ) comments") {
   Dialect semicolon = *find_dialect("linuxcnc");
   semicolon.comment_open = ";";
   semicolon.comment_close = "";
@@ -76,19 +77,19 @@ TEST_CASE("the header goes after a leading % line and an O-number line, never be
   const auto with_both = lines_of(annotated("%\nO1234 (PART)\nG21 G90\nG00 X1.\nM30\n%\n", fanuc));
   CHECK(with_both[0] == "%");
   CHECK(with_both[1] == "O1234 (PART)");
-  CHECK(with_both[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(with_both[2].rfind("(NCJ SEAL ", 0) == 0);
   CHECK(with_both[3].rfind("(NCJ TOTAL T=", 0) == 0);
 
   const auto o_only = lines_of(annotated("O0002\nG21 G90\nG00 X1.\nM30\n", fanuc));
   CHECK(o_only[0] == "O0002");
-  CHECK(o_only[1].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(o_only[1].rfind("(NCJ SEAL ", 0) == 0);
 
   const auto percent_only = lines_of(annotated("%\nG21 G90\nG0 X1\nM2\n%\n"));
   CHECK(percent_only[0] == "%");
-  CHECK(percent_only[1].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(percent_only[1].rfind("(NCJ SEAL ", 0) == 0);
 
   const auto neither = lines_of(annotated("G21 G90\nG0 X1\nM2\n"));
-  CHECK(neither[0].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(neither[0].rfind("(NCJ SEAL ", 0) == 0);
 
   // LinuxCNC's "o100 sub" is a control word, not a program number.
   CHECK_FALSE(annotation::is_program_number_line("o100 sub"));
@@ -104,19 +105,19 @@ TEST_CASE("the program's title comment after % and the O-number stays first, the
                                          fanuc));
   CHECK(titled[1] == "O1234");
   CHECK(titled[2] == "(BRACKET REV B)");
-  CHECK(titled[3].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(titled[3].rfind("(NCJ SEAL ", 0) == 0);
   // With the name on the O-number line, the next comment is the post's, not a title.
   const auto named = lines_of(annotated("%\nO1234 (BRACKET)\n(T1 D=6.)\nG21 G90\nG00 X1.\n"
                                         "M30\n%\n",
                                         fanuc));
-  CHECK(named[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(named[2].rfind("(NCJ SEAL ", 0) == 0);
   // A Mach3 post's "%" then "(1001)" then "(PART)": the first comment after '%' is the title.
   const auto mach = lines_of(annotated("%\n(1001)\n(PART)\nG21 G90\nG0 X1\nM30\n%\n"));
   CHECK(mach[1] == "(1001)");
-  CHECK(mach[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(mach[2].rfind("(NCJ SEAL ", 0) == 0);
   // Without a % or O-number line, no title: the header is first.
   const auto plain = lines_of(annotated("(PART)\nG21 G90\nG0 X1\nM2\n"));
-  CHECK(plain[0].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(plain[0].rfind("(NCJ SEAL ", 0) == 0);
 }
 
 TEST_CASE("the header names the totals, the components, the machine and the per-axis constants") {
@@ -245,5 +246,5 @@ TEST_CASE("a header warning names its block's line in the annotated file, past t
   }
   CHECK(warned == 1);
   CHECK(lines[0] == "%");
-  CHECK(lines[1].rfind("(NCJ FILE KEY=", 0) == 0); // the header: between the % line and the program
+  CHECK(lines[1].rfind("(NCJ SEAL ", 0) == 0); // the header: between the % line and the program
 }

@@ -1,14 +1,15 @@
 // An annotation is ncjoule's only in the file it was written for: a user's look-alike is never
 // taken for one, and a genuine annotation copied from another annotated file into a program (a
 // note after a block, a header line) is the user's text there, kept byte for byte by annotate
-// and strip. With a header, checksums are sealed with the file's key (its first header line);
-// without one, with the block's own line.
+// and strip. The seal (the header's first line, or without a header a SEAL field of the first
+// block comment) counts the file's own comments and lists the user's of the same form.
 #include <doctest/doctest.h>
 
 #include <string>
 
 #include "annotate_helpers.hpp"
 #include "marker.hpp"
+#include "seal.hpp"
 
 using namespace ncjoule;
 using namespace annotate_test;
@@ -52,7 +53,7 @@ void check_kept(const std::string& program, const AnnotateOptions& options = {})
 
 } // namespace
 
-TEST_CASE("a user's NCJ comment without a valid checksum is never an annotation") {
+TEST_CASE("a user's NCJ comment, even of the annotation's form, is never taken for one") {
   const std::string key =
       annotation::marked_comment("NCJ FILE KEY=ABCDEF", annotation::MarkKind::Key, {}, "");
   std::string bad_key = key;
@@ -82,31 +83,33 @@ TEST_CASE("an annotation pasted from another file after a block is kept by annot
 
 TEST_CASE("a header line pasted from another annotated file is kept as the user's") {
   const std::string other = annotated(kOther);
-  for (const char* label : {"(NCJ TOTAL ", "(NCJ OP ", "(NCJ MACHINE ", "(NCJ FILE KEY="}) {
+  for (const char* label : {"(NCJ TOTAL ", "(NCJ OP ", "(NCJ MACHINE ", "(NCJ SEAL "}) {
     CAPTURE(label);
     const std::string pasted = first_line(other, label);
-    // After the first block: a key line there is no key (it comes only before the code).
+    // After the first block: a seal line without its header lines is no seal.
     std::string program = kProgram;
     program.insert(program.find("G0 X10"), pasted + "\n");
     check_kept(program);
     check_kept(program, no_header());
-    // And among the program's own leading comments, but not a key line there.
-    if (std::string(label) != "(NCJ FILE KEY=")
-      check_kept("(my part)\n" + pasted + "\n" + kProgram);
+    // And among the program's own leading comments.
+    check_kept("(my part)\n" + pasted + "\n" + kProgram);
   }
 }
 
-TEST_CASE("the key is the first header line, and only the file's own annotations go with it") {
+TEST_CASE("the seal is the first header line, and only the file's own annotations go with it") {
   const std::string once = annotated(kProgram);
   const auto after = lines_of(once);
   REQUIRE(after.size() > 3);
-  const std::optional<std::string> key = annotation::key_of_line(after[0]);
-  REQUIRE(key);
-  CHECK(key->size() == 6);
-  // Derived from the program: the same program, the same file; another program, another key.
+  const std::optional<annotation::Seal> seal = annotation::seal_of_line(after[0]);
+  REQUIRE(seal);
+  CHECK(seal->blocks == 4);
+  CHECK(seal->keep.empty());
+  // The same program, the same file; the seal of another program does not cover this one.
   CHECK(annotated(kProgram) == once);
-  CHECK(annotation::key_of_line(lines_of(annotated(kOther))[0]) != key);
+  CHECK(annotation::seal_of_line(lines_of(annotated(kOther))[0])->sum != seal->sum);
   CHECK(strip(once) == kProgram);
+  // No block carries a checksum: the seal line alone has one.
+  CHECK(count(once, "CK=") == 1);
 }
 
 TEST_CASE("with a header, a block whose numbers a user edited still has its annotation stripped") {
@@ -120,15 +123,18 @@ TEST_CASE("with a header, a block whose numbers a user edited still has its anno
   CHECK(strip(edited) == expected);
 }
 
-TEST_CASE("without a header, an annotation is its line's: upper case and tabs still strip") {
+TEST_CASE("without a header, the seal is a field of the first comment: upper case still strips") {
   const std::string once = annotated(kProgram, std::nullopt, no_header());
   CHECK(strip(once) == kProgram);
+  CHECK(count(once, " SEAL=") == 1);
+  CHECK(count(once, "CK=") == 0);
   std::string upper = once;
   for (char& c : upper)
     if (c >= 'a' && c <= 'z') c = char(c - 'a' + 'A');
   std::string program_upper = kProgram; // already upper case: the annotations' units are not
   CHECK(strip(upper) == program_upper);
-  // Moved to another line, it is no longer ncjoule's.
+  // A program whose only comments of that form are the user's (no SEAL field covers them) keeps
+  // them, whatever their number.
   const std::string note = inline_annotation(once, "G1 X80 F300");
   std::string moved = kProgram;
   moved.replace(moved.find("G1 Y60\n"), 7, "G1 Y60" + note + "\n");
@@ -138,10 +144,10 @@ TEST_CASE("without a header, an annotation is its line's: upper case and tabs st
 TEST_CASE("a file mixing annotations of several runs: annotate takes out what strip takes out") {
   const std::string with_header = annotated(kProgram);
   const std::string without = annotated(kOther, std::nullopt, no_header());
-  // The key line twice (a line duplicated in an editor), then the comments of a file annotated
-  // without a header after the program's end.
-  const std::string mixed =
-      first_line(with_header, "(NCJ FILE KEY=") + "\n" + with_header + without;
+  // The seal line twice (a line duplicated in an editor), then the comments of a file annotated
+  // without a header after the program's end: the seal no longer covers them all, and every
+  // comment of the form goes.
+  const std::string mixed = first_line(with_header, "(NCJ SEAL ") + "\n" + with_header + without;
   CHECK(strip(mixed) == std::string(kProgram) + kOther);
   EstimateOptions estimate_options;
   estimate_options.simulate_removal = false;

@@ -64,7 +64,7 @@ TEST_CASE("the tricky CRLF file gets annotations, and only comments are added") 
   CHECK(header >= 3);
   CHECK(after[0] == "%");
   CHECK(after[1] == "(Tricky program)");
-  CHECK(after[2].rfind("(NCJ FILE KEY=", 0) == 0);
+  CHECK(after[2].rfind("(NCJ SEAL ", 0) == 0);
   for (std::size_t i = 2; i < 2 + header; ++i)
     CHECK(after[i].rfind("(NCJ ", 0) == 0);
   for (std::size_t i = 2; i < before.size(); ++i) {

@@ -1,11 +1,15 @@
 // strip() removes exactly what annotate() inserted, and nothing a user wrote, even when it looks
-// alike: comments are recognised by their checksum, not by their look.
+// alike: the seal in the header says which comments are ncjoule's. A file edited after it was
+// annotated (its header deleted, a line added above it, blanks removed) still loses every
+// annotation, and annotate does not add a second set.
 #include <doctest/doctest.h>
 
 #include <string>
 
 #include "annotate_helpers.hpp"
+#include "annotation_form.hpp"
 #include "marker.hpp"
+#include "strip_line.hpp"
 
 using namespace ncjoule;
 using namespace annotate_test;
@@ -22,7 +26,7 @@ TEST_CASE("user comments that merely look like annotations are kept") {
   CHECK_FALSE(has_annotations(user));
 }
 
-TEST_CASE("an annotation with one character changed is no longer ncjoule's") {
+TEST_CASE("a file whose annotations a user edited loses them all, by their form") {
   const std::string original = "G21 G90\nG0 X10\nG1 X20 F100\nM2\n";
   const std::string once = annotated(original);
   REQUIRE(has_annotations(once));
@@ -31,11 +35,52 @@ TEST_CASE("an annotation with one character changed is no longer ncjoule's") {
   std::string edited = once;
   const std::size_t digit = edited.find_first_of("0123456789", at + 14);
   edited[digit] = edited[digit] == '9' ? '8' : '9';
-  const std::string stripped = strip(edited);
-  // The edited comment stays (it is now the user's), every other annotation goes.
-  CHECK(stripped.find("G0 X10 (NCJ T=") != std::string::npos);
-  CHECK(stripped.find("G1 X20 F100\n") != std::string::npos);
-  CHECK(count(stripped, "(NCJ") == 1);
+  // The seal no longer matches: every comment of the annotation's form goes, the edited one too.
+  CHECK(strip(edited) == original);
+  const std::vector<LineSpan> spans = annotation::split_lines(edited);
+  CHECK(annotation::Annotations(edited, spans).by_form());
+  CHECK_FALSE(annotation::Annotations(once, annotation::split_lines(once)).by_form());
+}
+
+TEST_CASE(
+    "what users and DNC senders do to an annotated file: strip still finds every annotation") {
+  const std::string original = "%\nO1001 (PART)\nG21 G90\nG0 X10 Y5\nG1 X20 F100\nG1 Y20\n"
+                               "G1 X10\nG0 Z20\nM30\n%\n";
+  const std::string once = annotated(original);
+  REQUIRE(strip(once) == original);
+  auto without_lines = [](const std::string& text, auto drop) {
+    std::string out;
+    for (const std::string& l : lines_of(text))
+      if (!drop(l)) out += l + "\n";
+    return out;
+  };
+  // A line of code added above the header (the seal moves down with it).
+  std::string added = once;
+  added.insert(added.find("(NCJ SEAL"), "G17 (ADDED BY JS)\n");
+  std::string original_added = original;
+  original_added.insert(original_added.find("G21 G90"), "G17 (ADDED BY JS)\n");
+  CHECK(strip(added) == original_added);
+  // The header deleted: the block comments go by their form (on most blocks).
+  const std::string headless =
+      without_lines(once, [](const std::string& l) { return annotation::is_header_line(l); });
+  CHECK(headless.find("(NCJ SEAL") == std::string::npos);
+  CHECK(strip(headless) == original);
+  // Blank lines removed, and then every blank, as DNC senders do.
+  const std::string no_blank_lines =
+      without_lines(once, [](const std::string& l) { return l.empty(); });
+  CHECK(strip(no_blank_lines) == original);
+  std::string no_blanks, original_no_blanks;
+  for (char c : once)
+    if (c != ' ') no_blanks += c;
+  for (char c : original)
+    if (c != ' ') original_no_blanks += c;
+  CHECK(strip(no_blanks) == original_no_blanks);
+  // And annotate never doubles them, whatever was done.
+  for (const std::string& edited : {added, headless, no_blank_lines, no_blanks}) {
+    const std::string again = annotated(edited);
+    CHECK(count(again, "(NCJ SEAL") == 1);
+    CHECK(count(again, "(NCJ T=") == count(once, "(NCJ T="));
+  }
 }
 
 TEST_CASE("a file turned to upper case by an editor still strips") {
@@ -56,7 +101,7 @@ TEST_CASE("strip takes the space annotate inserted and keeps the user's own blan
   CHECK(strip(once) == original);
 }
 
-TEST_CASE("each kind of annotation has a checksum of its own, sealed with the file's key") {
+TEST_CASE("comments of earlier versions, sealed with CK= and the file's key, still strip") {
   using annotation::MarkKind;
   const annotation::CommentStyle paren;
   const std::string key =
@@ -68,20 +113,38 @@ TEST_CASE("each kind of annotation has a checksum of its own, sealed with the fi
   CHECK(mark(MarkKind::Inline) != mark(MarkKind::Header));
   CHECK(mark(MarkKind::Inline) != mark(MarkKind::Line));
   CHECK(mark(MarkKind::Header) != mark(MarkKind::Line));
-  CHECK(annotation::marked_comment("NCJ T=1s", MarkKind::Inline, paren,
-                                   annotation::key_seed("ABCDEG")) != mark(MarkKind::Inline));
   // A header comment at the end of a code line is not an inline annotation, and an inline one on
-  // a line of its own is not a header line: only the key line goes.
+  // a line of its own is not a header line: only the key line goes (the others, on as many lines
+  // as there is code, are too few to be taken by their form).
   const std::string mixed =
-      "G0 X1 " + mark(MarkKind::Header) + "\n" + mark(MarkKind::Inline) + "\nG0 X2\n";
+      "G0 X1 " + mark(MarkKind::Header) + "\n" + mark(MarkKind::Inline) + "\nG0 X2\nG0 X3\nG0 X4\n";
   CHECK(strip(key + "\n" + mixed) == mixed);
   CHECK(strip(key + "\nG0 X1 " + mark(MarkKind::Inline) + "\n" + mark(MarkKind::Header) + "\n" +
               mark(MarkKind::Line) + "\nG0 X2\n") == "G0 X1\nG0 X2\n");
-  // Without the key line, none of them is an annotation.
-  const std::string keyless = "G0 X1 " + mark(MarkKind::Inline) + "\n" + mark(MarkKind::Header) +
-                              "\n" + mark(MarkKind::Line) + "\nG0 X2\n";
-  CHECK(strip(keyless) == keyless);
+  // Without the key line, a few of them are the user's; on most blocks, an annotated file whose
+  // header was deleted.
+  const std::string few = "G0 X1 " + mark(MarkKind::Inline) + "\nG0 X2\nG0 X3\nG0 X4\n";
+  CHECK(strip(few) == few);
+  const std::string most = "G0 X1 " + mark(MarkKind::Inline) + "\nG0 X2 " + mark(MarkKind::Inline) +
+                           "\nG0 X3 " + mark(MarkKind::Inline) + "\nG0 X4\n";
+  CHECK(strip(most) == "G0 X1\nG0 X2\nG0 X3\nG0 X4\n");
   // A key line after the first line with code is no key.
   CHECK(strip("G0 X0\n" + key + "\nG0 X1 " + mark(MarkKind::Inline) + "\n") ==
         "G0 X0\n" + key + "\nG0 X1 " + mark(MarkKind::Inline) + "\n");
+}
+
+TEST_CASE("every value annotate writes reads back as the annotation's form") {
+  for (const char* comment :
+       {"(NCJ T=0.012s E=450J P=1.2kW MRR=62.1 CUM=1h02m03s)", "(NCJ T=1m05s E=-1.23kJ)",
+        "(NCJ T=16700000000000000000000000h)", "(NCJ T=1.23S E=20.6KJ P=4.5MW)",
+        "(NCJ T=6s LOAD_PCT=135 OP=Pocket_40_x_20,_r8 OPT=52.9s OPE=69.2kJ)",
+        "(NCJT=1.23sE=20.6kJP=1.42kWMRR=62.1CUM=23.1s)", "(NCJ OP=XOPT OPT=1s OPE=1J)"}) {
+    CAPTURE(comment);
+    const auto found = annotation::block_comments(std::string("G1 X1 ") + comment);
+    REQUIRE(found.size() == 1);
+    CHECK(found[0].begin == 5);
+  }
+  for (const char* comment : {"(NCJ T=1s hello)", "(NCJ E=1 J)", "(NCJ is our code)", "(NCJ)",
+                              "(NCJ T=1s E=)", "(NCJ P=1kW T=1s)"})
+    CHECK_MESSAGE(annotation::block_comments(std::string("G1 X1 ") + comment).empty(), comment);
 }

@@ -1,8 +1,14 @@
 /* The C API from C: a context from a machine profile, estimates of a file and of a string,
  * totals that agree with the per-block results, and errors with their text. */
+#ifndef _WIN32
+#define _POSIX_C_SOURCE 200809L /* symlink() */
+#endif
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#ifndef _WIN32
+#include <unistd.h>
+#endif
 
 #include "ncjoule.h"
 
@@ -122,6 +128,43 @@ int main(void) {
       CHECK(m == out_length && memcmp(written, annotated, m) == 0,
             "the file holds the same annotated text");
       CHECK(ncjoule_annotate_file(ctx, "no/such/file.ngc", NULL) != 0, "missing input refused");
+#ifndef _WIN32
+      /* In place, the command's guards: a symbolic link's target is never rewritten, and a file
+       * still open for writing (here by the caller itself, a post that has not closed it yet)
+       * is never replaced. */
+      const char* target = "capi_link_target.ngc";
+      const char* link = "capi_link.ngc";
+      FILE* t = fopen(target, "wb");
+      if (t) {
+        fwrite(original, 1, n, t);
+        fclose(t);
+      }
+      remove(link);
+      CHECK(symlink(target, link) == 0, "a link to a program");
+      CHECK(ncjoule_annotate_file(ctx, link, NULL) != 0, "in place on a link: refused");
+      CHECK(strstr(ncjoule_last_error(), "symbolic link") != NULL, "... saying it is a link");
+      FILE* back = fopen(target, "rb");
+      m = back ? fread(written, 1, sizeof written, back) : 0;
+      if (back) fclose(back);
+      CHECK(m == n && memcmp(written, original, n) == 0, "... the link's target untouched");
+      FILE* post = fopen(copy, "wb");
+      if (post) {
+        fwrite(original, 1, n, post);
+        fflush(post);
+        CHECK(ncjoule_annotate_file(ctx, copy, NULL) != 0, "in place while still open: refused");
+        CHECK(strstr(ncjoule_last_error(), "still being written") != NULL, "... saying why");
+        fputs("G0 Z50\n", post);
+        fclose(post);
+        FILE* r3 = fopen(copy, "rb");
+        m = r3 ? fread(written, 1, sizeof written, r3) : 0;
+        if (r3) fclose(r3);
+        CHECK(m == n + 7 && memcmp(written, original, n) == 0 &&
+                  memcmp(written + n, "G0 Z50\n", 7) == 0,
+              "... every byte the writer wrote kept");
+      }
+      remove(link);
+      remove(target);
+#endif
       remove(copy);
       ncjoule_free(annotated);
     }

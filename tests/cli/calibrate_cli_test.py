@@ -132,6 +132,25 @@ with tempfile.TemporaryDirectory() as tmp:
           f"a missing column: exit 2 naming the file and the column (got {r.returncode}: "
           f"{r.stderr.strip()[:200]})")
 
+    # Absurd numbers, too few rows, one speed only: exit 2 with the reason, nothing written,
+    # never a crash (1e308 once ended in SIGSEGV inside Eigen's SVD; 1e300 wrote
+    # spindle_kb = 1e+297 +- nan; one row gave a line).
+    for name, text, said in (
+            ("huge.csv", "rpm,power_w\n3000,1e308\n4000,1e308\n5000,1e308\n", "huge.csv:2:6:"),
+            ("big.csv", "rpm,power_w\n3000,1e300\n4000,1e300\n5000,1e300\n", "beyond"),
+            ("negative.csv", "rpm,power_w\n3000,-1100\n4000,1300\n5000,1520\n", "negative"),
+            ("one-row.csv", "rpm,power_w\n3000,1100\n", "1 usable row"),
+            ("one-speed.csv", "rpm,power_w\n3000,1100\n3000,1110\n3000,1090\n",
+             "same spindle speed")):
+        path = write(os.path.join(tmp, name), text)
+        r = run("calibrate", "--machine", HAAS, "--spindle", path, "-o", out3)
+        check(r.returncode == 2 and said in r.stderr and "nan" not in r.stdout
+              and not os.path.exists(out3),
+              f"{name}: exit 2 saying {said!r} (got {r.returncode}: {r.stderr.strip()[:200]})")
+    r = run("calibrate", "--machine", HAAS, "--spindle", spindle, "--tare-w", "1e308", "-o", out3)
+    check(r.returncode == 1 and not os.path.exists(out3),
+          f"--tare-w 1e308: refused (got {r.returncode})")
+
     # Exit codes.
     r = run("calibrate", "--machine", HAAS, "-o", out3)
     check(r.returncode == 1, f"nothing to fit: exit 1 (got {r.returncode})")

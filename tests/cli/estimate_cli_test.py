@@ -255,5 +255,24 @@ with tempfile.TemporaryDirectory() as tmp:
     check(fields is not None and abs(float(fields.group(2)) / expected - 1) < 0.02,
           f"the slot block's MRR is {expected:.3f} in^3/min ({block})")
 
+# A comment holding a terminal's escape sequences (a window title, a colour) names an operation:
+# every text output shows it escaped (\x1b, \x07), never raw; JSON escapes it its own way.
+with tempfile.TemporaryDirectory() as tmp:
+    hostile = os.path.join(tmp, "esc\x1b[31m.ngc")
+    with open(hostile, "wb") as f:
+        f.write(b"G21 G90\n(OP \x1b]0;title\x07 \x1b[31mRED)\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\n"
+                b"G1 X10 F100\nM2\n")
+    outputs = {
+        "summary": [NCJOULE, "estimate", hostile, "--machine", ZHOU, "--no-removal"],
+        "csv": [NCJOULE, "estimate", hostile, "--machine", ZHOU, "--no-removal", "--csv"],
+        "compare": [NCJOULE, "compare", hostile, hostile, "--machine", ZHOU, "--no-removal"],
+    }
+    for name, cmd in outputs.items():
+        r = subprocess.run(cmd, capture_output=True)
+        check(r.returncode == 0 and b"\x1b" not in r.stdout and b"\x07" not in r.stdout
+              and b"\\x1b" in r.stdout,
+              f"{name}: control bytes escaped on stdout ({r.returncode}: {r.stdout[:300]!r} "
+              f"{r.stderr[:200]!r})")
+
 print(f"{len(failures) == 0 and 1 or 0} passed, {len(failures) and 1 or 0} failed")
 sys.exit(1 if failures else 0)

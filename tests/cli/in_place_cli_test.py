@@ -164,6 +164,11 @@ def test_not_a_program(d):
         "random.ngc": (os.urandom(20000), "binary"),
         "passwd.ngc": (b"root:x:0:0:root:/root:/bin/bash\n"
                        b"daemon:x:1:1:daemon:/usr/sbin:/usr/sbin/nologin\n", "no G-code"),
+        # A setup sheet saved as .ngc, an empty post: comments, '%' and blank lines only.
+        "setup-sheet.ngc": (b"(SETUP SHEET)\n(PART 1234 REV B)\n; vise, 2 parallels\n\n",
+                            "no block to run"),
+        "percent.ngc": (b"%\n%\n", "no block to run"),
+        "empty.ngc": (b"", "no block to run"),
     }
     for name, (data, word) in cases.items():
         path = os.path.join(d, name)

@@ -91,6 +91,23 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 2, f"time that goes backwards: exit 2 (got {r.returncode})")
     check(f"{backwards}:4:" in r.stderr, f"names line 4 (got {r.stderr.strip()[:200]})")
 
+    # Powers or times no meter gives, a negative power: exit 2 at the cell, and no figures
+    # (1e308 printed inf and 309-digit energies; -50 W was taken).
+    for name, text, cell in (("huge.csv", "time_s,power_w\n0,100\n1,1e308\n2,100\n", ":3:3:"),
+                             ("kw.csv", "time_s,power_kw\n0,0.1\n1,1e300\n2,0.1\n", ":3:3:"),
+                             ("negative.csv", "time_s,power_w\n0,100\n1,-50\n2,100\n", ":3:3:"),
+                             ("late.csv", "time_s,power_w\n0,100\n1e308,100\n2e308,1\n", ":3:1:")):
+        path = os.path.join(tmp, name)
+        with open(path, "w") as f:
+            f.write(text)
+        r = run("measure", path)
+        check(r.returncode == 2 and path + cell in r.stderr and "energy" not in r.stdout
+              and "inf" not in r.stdout,
+              f"{name}: exit 2 at {cell}, no figures (got {r.returncode}: {r.stdout[:100]!r} "
+              f"{r.stderr.strip()[:200]})")
+    r = run("measure", log, "--idle-w", "1e308")
+    check(r.returncode == 1, f"--idle-w 1e308: refused (got {r.returncode})")
+
     r = run("measure", os.path.join(tmp, "missing.csv"))
     check(r.returncode == 1, f"a log that does not exist: exit 1 (got {r.returncode})")
 

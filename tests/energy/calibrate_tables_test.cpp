@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "ncjoule/calibrate.hpp"
@@ -125,4 +126,37 @@ TEST_CASE("Zhou's fit keeps a coefficient at 0 rather than going negative") {
   CHECK(c2->value < 1e-9);
   for (const auto& c : fit.constants)
     CHECK(c.value >= 0);
+}
+
+TEST_CASE("fits refuse what they cannot determine, and numbers no solver can take, without a "
+          "crash") {
+  // One row: a line through it is any line.
+  const FitReport one = fit_spindle({{3000, 0, 0, 900}}, 400);
+  CHECK(one.refused.find("1 usable row") != std::string::npos);
+  CHECK(one.constants.empty());
+  PowerConstants k;
+  k.pavanaskar.spindle_kb_w_per_rpm = 0.25;
+  apply_fit(k, one);
+  CHECK(k.pavanaskar.spindle_kb_w_per_rpm == 0.25); // nothing applied
+  // Three rows at one speed: no slope.
+  const FitReport flat =
+      fit_spindle({{3000, 0, 0, 900}, {3000, 0, 0, 910}, {3000, 0, 0, 905}}, 400);
+  CHECK(flat.refused.find("same spindle speed") != std::string::npos);
+  // Zhou: cuts at a single speed cannot give the speed exponent.
+  std::vector<SteadyStateReading> one_speed;
+  for (double mrr : {0.0, 5.0, 10.0, 20.0, 40.0})
+    one_speed.push_back({2000, 0, mrr, 900 + 3 * mrr});
+  CHECK_FALSE(fit_zhou_power(one_speed).refused.empty());
+  CHECK_FALSE(fit_zhou_sec(one_speed).refused.empty());
+  // 1e300 W readings (past the CSV's checks, as a library caller may pass them): refused, where
+  // 1e308 once crashed inside Eigen's SVD under Ceres' covariance.
+  for (double huge : {1e300, 1e308, std::numeric_limits<double>::infinity()}) {
+    CAPTURE(huge);
+    std::vector<SteadyStateReading> r;
+    for (double n = 1000; n <= 5000; n += 1000)
+      r.push_back({n, 0, n / 100, huge});
+    CHECK_FALSE(fit_spindle(r, 0).refused.empty());
+    CHECK_FALSE(fit_zhou_power(r).refused.empty());
+    CHECK_FALSE(fit_zhou_sec(r).refused.empty());
+  }
 }

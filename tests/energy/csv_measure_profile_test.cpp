@@ -102,8 +102,10 @@ TEST_CASE("a profile written with fitted constants loads back through the profil
   const MachineProfile original = parse_profile(base.str(), haas_path);
   PowerConstants k;
   k.model = PowerModel::Combined;
+  // Values distinct from each other and within every constant's physical range (a spindle's
+  // n^2 term of W/rpm^2, Zhou's exponent), which the loader checks.
   for (std::size_t i = 0; i < kPowerParameterCount; ++i)
-    set_parameter(k, static_cast<PowerParameter>(i), 1.5 + 0.37 * static_cast<double>(i));
+    set_parameter(k, static_cast<PowerParameter>(i), 0.0015 + 0.00037 * static_cast<double>(i));
   k.zhou.c3 = 8.06e-7;
   k.co2_kg_per_kwh = 0.42;
   k.price_per_kwh = 0.19;
@@ -200,4 +202,47 @@ TEST_CASE("a base profile that is not TOML is reported at its line and column") 
   CHECK(problems[0].line == 2);
   CHECK(problems[0].column > 0);
   CHECK(problems[0].message.rfind("not valid TOML", 0) == 0);
+}
+
+TEST_CASE("readings and logs are checked against what a machine can be, at the cell") {
+  auto errors_of = [](const std::string& text, bool log) {
+    std::vector<Diagnostic> d;
+    const auto csv = parse_numeric_csv("t.csv", text, d);
+    REQUIRE(csv);
+    if (log)
+      (void)power_log_from_csv(*csv, d);
+    else
+      (void)readings_from_csv(*csv, kFieldRpm | kFieldMrr, d);
+    return d;
+  };
+  // 1e308 W, inf, an absurd speed, an absurd removal rate, a negative power.
+  const std::pair<const char*, int> rows[] = {{"3000,5,1e308", 8},
+                                              {"3000,5,inf", 8},
+                                              {"3e7,5,900", 1},
+                                              {"3000,1e9,900", 6},
+                                              {"3000,5,-1e-3", 8}};
+  for (const auto& [row, column] : rows) {
+    CAPTURE(std::string(row));
+    const auto d =
+        errors_of(std::string("rpm,mrr_mm3_s,power_w\n1000,1,500\n") + row + "\n", false);
+    REQUIRE(d.size() == 1); // the cell; the first row stays usable
+    CHECK(d[0].severity == Severity::Error);
+    CHECK(d[0].line == 3);
+    CHECK(d[0].column == column);
+  }
+  const auto kw = errors_of("rpm,mrr_mm3_s,power_kw\n1000,1,1e300\n", false);
+  REQUIRE_FALSE(kw.empty());
+  CHECK(kw[0].column == 8);
+  CHECK(kw[0].message.find("1e+303 W") != std::string::npos);
+  // A log: a negative power or a non-finite time is refused at its cell.
+  const auto negative = errors_of("time_s,power_w\n0,100\n1,-50\n2,100\n3,100\n", true);
+  REQUIRE(negative.size() == 1);
+  CHECK(negative[0].line == 3);
+  CHECK(negative[0].column == 3);
+  CHECK(negative[0].message.find("negative") != std::string::npos);
+  const auto huge = errors_of("time_s,power_w\n0,100\n1e308,100\n", true);
+  REQUIRE_FALSE(huge.empty());
+  CHECK(huge[0].line == 3);
+  CHECK(huge[0].column == 1);
+  CHECK(errors_of("time_s,power_kw\n0,0.1\n1,1000\n2,0.1\n", true).empty()); // 1 MW
 }

@@ -373,3 +373,66 @@ TEST_CASE("the Fanuc family's additional work offsets: G54.1 P, Haas G154 P and 
   options.dialect = find_dialect("fanuc");
   CHECK(errors(interpret(make_source("o.nc", "O1\nG21\nG54.1 P400\nM30\n"), options)) == 1);
 }
+
+TEST_CASE("L is a whole number: a canned cycle's L2.5 is refused, as rs274 refuses it") {
+  for (const char* dialect : {"linuxcnc", "fanuc", "mach3"}) {
+    CAPTURE(std::string(dialect));
+    const std::string program =
+        "G21 G90\nG0 X0 Y0 Z5\nG91 G81 X10 Y0 Z-6 R-4 F100 L2.5\nG80\nG90\nM2\n";
+    const Toolpath p = run(program, dialect);
+    CHECK(errors(p) == 1);
+    CHECK(with_severity(p, Severity::Error)[0].column == 29); // the L word
+    // No hole drilled: the block is skipped, not rounded to three holes.
+    CHECK(of_kind(p, CanonKind::Feed).empty());
+    std::string whole = program;
+    whole.replace(whole.find("L2.5"), 4, "L3");
+    CHECK(errors(run(whole, dialect)) == 0);
+  }
+}
+
+TEST_CASE("G16 polar coordinates as the Fanuc family and Mach3 read them") {
+  auto ends = [](const Toolpath& p) {
+    std::vector<std::pair<double, double>> out;
+    for (const CanonCommand& c : move_commands(p))
+      out.emplace_back(c.end.x, c.end.y);
+    return out;
+  };
+  // A bolt circle about the work zero, absolute angles, then incremental ones (radius kept).
+  const Toolpath fanuc = run("G21 G90 G17\nG0 X0 Y0 Z5\nG16\nG0 X50 Y0\nY90\nG91 Y90\nG90\nG15\n"
+                             "G0 X10 Y10\nM30\n",
+                             "fanuc");
+  CHECK(errors(fanuc) == 0);
+  CHECK(warnings(fanuc) == 0);
+  const auto f = ends(fanuc);
+  REQUIRE(f.size() == 5);
+  CHECK(f[1].first == doctest::Approx(50));
+  CHECK(f[1].second == doctest::Approx(0).epsilon(1e-9));
+  CHECK(f[2].first == doctest::Approx(0).scale(50));
+  CHECK(f[2].second == doctest::Approx(50));
+  CHECK(f[3].first == doctest::Approx(-50));
+  CHECK(f[3].second == doctest::Approx(0).scale(50));
+  CHECK(f[4].first == doctest::Approx(10)); // G15: Cartesian again
+  CHECK(f[4].second == doctest::Approx(10));
+  // A drilled hole circle: the cycle's X and Y are radius and angle too.
+  const Toolpath holes = run("G21 G90 G17\nG0 X0 Y0 Z5\nG16\nG81 X100 Y30 Z-5 R2 F100\nY150\n"
+                             "G80\nG15\nM30\n",
+                             "haas");
+  CHECK(errors(holes) == 0);
+  std::vector<std::pair<double, double>> plunges;
+  for (const CanonCommand& c : of_kind(holes, CanonKind::Feed))
+    plunges.emplace_back(c.end.x, c.end.y);
+  REQUIRE(plunges.size() == 2);
+  CHECK(plunges[0].first == doctest::Approx(100 * std::cos(30 * M_PI / 180)));
+  CHECK(plunges[0].second == doctest::Approx(50));
+  CHECK(plunges[1].first == doctest::Approx(-100 * std::cos(30 * M_PI / 180)));
+  CHECK(plunges[1].second == doctest::Approx(50));
+  // Mach3: the pole is where the tool was when G16 was read.
+  const auto m = ends(run("G21 G90 G17\nG0 X10 Y10 Z5\nG16\nG1 X5 Y90 F100\nG15\nM30\n", "mach3"));
+  REQUIRE(m.size() == 2);
+  CHECK(m[1].first == doctest::Approx(10));
+  CHECK(m[1].second == doctest::Approx(15));
+  // LinuxCNC has no G16: a warning, and the words are Cartesian.
+  const Toolpath lcnc = run("G21 G90\nG0 X0 Y0 Z5\nG16\nG0 X50 Y90\nM2\n", "linuxcnc");
+  CHECK(warnings(lcnc) == 1);
+  CHECK(ends(lcnc).back().second == doctest::Approx(90));
+}

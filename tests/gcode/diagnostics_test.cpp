@@ -156,6 +156,28 @@ TEST_CASE("dialect detection") {
   // ncjoule's own annotations name a dialect: they do not count.
   CHECK(detect("(NCJ MACHINE DIALECT=fanuc CK=ABCDEF)\nG21\nG0 X1 (NCJ T=1s CK=ABCDEF)\n") ==
         "linuxcnc");
+  // Free text in comments names no dialect: a customer's, a part's or a machine's name is not
+  // the post's signature. A LinuxCNC program with a Haas note keeps G4 P in seconds.
+  std::string linuxcnc = "G21 G90\n";
+  for (int i = 0; i < 300; ++i)
+    linuxcnc += "G1 X" + std::to_string(i % 10) + " F300\n";
+  linuxcnc += "(OP 7: HOLES FOR THE HAAS TRUNNION ADAPTER)\nG4 P5\nM2\n";
+  CHECK(detect(linuxcnc) == "linuxcnc");
+  CHECK(of_kind(run(linuxcnc, ""), CanonKind::Dwell)[0].value == doctest::Approx(5.0));
+  // A Fusion Haas program with a customer's name in its header: Haas, by the post's machine
+  // block, never Sinumerik.
+  const std::string fusion_haas = "%\nO1023\n(CUSTOMER: SIEMENS AG - BRACKET)\n(Machine)\n"
+                                  "(  vendor: HAAS)\n(  model: VF-2)\nG90 G94 G17\nG20\n"
+                                  "G0 X1. Y1.\nM30\n%\n";
+  CHECK(describe_dialect_choice(choose_dialect(make_source("x.nc", fusion_haas))) ==
+        "haas (detected: 'haas' in the post's machine block at line 5)");
+  CHECK(detect("%\nO1023\n(CUSTOMER: SIEMENS AG - BRACKET)\nG20\nG0 X1.\nM30\n%\n") == "fanuc");
+  CHECK(detect("%\nO1234\n(MARLIN BRACKET REV B)\nG21\nG0 X1.\nM30\n%\n") == "fanuc");
+  // The post's own signature does name it, in the header only.
+  CHECK(detect("(Post Processor: HAAS VF series)\nG20\nG0 X1.\nM30\n") == "haas");
+  CHECK(detect("G20\nG0 X1.\n(Post Processor: HAAS VF series)\nM30\n") == "linuxcnc");
+  // Sinumerik's own words, without a name anywhere.
+  CHECK(detect("; warm-up\nEXTERN WARMUP(REAL)\nG70 G90\nG0 SUPA Z0\nM2\n") == "siemens");
   // Why: the first clue, with its line.
   const DialectChoice c = choose_dialect(make_source("x.nc", "%\nO1001 (PART)\nG21\nM30\n"));
   CHECK(c.origin == DialectOrigin::Detected);

@@ -122,7 +122,7 @@ def strip(text, folder):
 
 def annotated(text):
     import re
-    return re.search(r"[(;]NCJ [^\n]* CK=", text, re.IGNORECASE) is not None
+    return re.search(r"[(;]NCJ SEAL LINES=", text, re.IGNORECASE) is not None
 
 
 def args(post, *more):

@@ -39,7 +39,7 @@ function strip(file) {
 }
 
 function annotated(text) {
-  return /[(;]NCJ [^\n]* CK=/i.test(text);
+  return /[(;]NCJ SEAL LINES=/i.test(text);
 }
 
 // A modern vendor post: property objects, its own onTerminate.
@@ -273,7 +273,7 @@ test("no machine profile set: ncjoule takes the user config's machine", () => {
   assert.ok(!argv.some((a) => a.startsWith("--machine")), argv.join(" "));
   assert.strictEqual(ctx.record.warnings.length, 0, ctx.record.warnings.join("; "));
   const text = fs.readFileSync(out, "latin1");
-  assert.ok(/\(NCJ FILE KEY=/.test(text), "annotated");
+  assert.ok(/\(NCJ SEAL /.test(text), "annotated");
   assert.ok(/NCJ MACHINE NAME=\S+ PROFILE=haas-vf2\.toml/i.test(text), "with the config's machine");
 });
 

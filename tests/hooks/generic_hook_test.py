@@ -47,7 +47,7 @@ def read(path):
 
 
 def annotated(data):
-    return re.search(rb"[(;]NCJ [^\n]* CK=", data, re.I) is not None
+    return re.search(rb"[(;]NCJ SEAL LINES=", data, re.I) is not None
 
 
 def strip(path):
@@ -474,6 +474,28 @@ def still_being_written(folder):
              watch, "--once", env={"NCJOULE_QUIET": "0"}, timeout=120)
     check(len(stub_calls(s)) == 5 and r.returncode == 1 and "still being written" in r.stderr.decode(),
           "always busy: %d calls, exit %d" % (len(stub_calls(s)), r.returncode))
+
+    case("watch --once: a file another program keeps appending to is given up after --give-up")
+    growing = os.path.join(watch, "growing.nc")
+    with open(growing, "w") as f:
+        f.write("G21 G90\n")
+    writer = subprocess.Popen([sys.executable, "-c",
+                               "import sys, time\n"
+                               "for k in range(300):\n"
+                               "    open(sys.argv[1], 'a').write('G1 X%d F100\\n' % k)\n"
+                               "    time.sleep(0.1)\n", growing])
+    s = stub(folder, 'echo "ncjoule: annotated $f" >&2')
+    started = time.time()
+    r = hook("--strict", "--ncjoule", s, "--machine", MACHINE, "--interval", "0.2", "--watch",
+             watch, "--once", "--give-up", "2", env={"NCJOULE_QUIET": "1"}, timeout=60)
+    took = time.time() - started
+    writer.kill()
+    writer.wait()
+    check(r.returncode == 1 and "kept changing for 2 s" in r.stderr.decode() and took < 20,
+          "growing file: exit %d after %.1f s %r" % (r.returncode, took, r.stderr.decode()[-300:]))
+    # busy.nc, quiet, is taken once; the growing file never.
+    check(len(stub_calls(s)) == 1, "growing file: ncjoule was run on it: %r" % stub_calls(s))
+    os.remove(growing)
 
     case("file mode: tried once more after the quiet period, then a warning")
     s = stub(folder, busy)

@@ -40,7 +40,7 @@ def run_filter(program, file, env=None):
     """Like LinuxCNC: sh -c "PROGRAM 'FILE'" with stdin closed."""
     full_env = dict(os.environ)
     for k in ("NCJOULE", "NCJOULE_MACHINE", "NCJOULE_STOCK", "NCJOULE_ARGS", "INI_FILE_NAME",
-              "NCJOULE_DISABLE", "NCJOULE_FILTER_PASSTHROUGH"):
+              "NCJOULE_DISABLE", "NCJOULE_FILTER_PASSTHROUGH", "NCJOULE_TIMEOUT"):
         full_env.pop(k, None)
     full_env.update(env or {})
     return subprocess.run(["sh", "-c", "%s %s" % (program, q(file))], stdin=subprocess.DEVNULL,
@@ -53,7 +53,7 @@ def progress_values(stderr):
 
 
 def annotated(text):
-    return re.search(rb"[(;]NCJ [^\n]* CK=", text, re.I) is not None
+    return re.search(rb"[(;]NCJ SEAL LINES=", text, re.I) is not None
 
 
 def strip(data, folder):
@@ -212,6 +212,42 @@ def main():
           "unknown option: exit %d %r" % (r.returncode, r.stderr.decode()))
     r = run_filter("%s --machine" % q(FILTER), program_file)
     check(r.returncode == 1 and "needs a value" in r.stderr.decode(), "no value: %r" % r.stderr.decode())
+
+    case("an argument that would write a file (--in-place, -o) is refused: the file never changes")
+    for args in ("--in-place", "-i", "-vi", "--output=x.ngc", "-o x.ngc", "--in-place=yes"):
+        r = run_filter(base, program_file, {"NCJOULE_ARGS": args})
+        check(r.returncode == 0 and r.stdout == original and "write a file" in r.stderr.decode(),
+              "ARGS %r: exit %d %r" % (args, r.returncode, r.stderr.decode()))
+    with open(os.path.join(ini_dir, "inplace.ini"), "w") as f:
+        f.write("[NCJOULE]\nMACHINE = mill.toml\nPROGRAM = %s\nARGS = --in-place\n" % NCJOULE)
+    r = run_filter(q(FILTER), program_file, {"INI_FILE_NAME": os.path.join(ini_dir, "inplace.ini")})
+    check(r.returncode == 0 and r.stdout == original and "write a file" in r.stderr.decode(),
+          "INI ARGS --in-place: %r" % r.stderr.decode())
+    r = run_filter("%s -- --in-place" % base, program_file)
+    check(r.returncode == 0 and r.stdout == original, "-- --in-place: %r" % r.stderr.decode())
+    # A value that holds an i or an o is no option: "-m" takes the rest of its word.
+    r = run_filter("%s --ncjoule %s --stock %s" % (q(FILTER), q(NCJOULE), q(STOCK)), program_file,
+                   {"NCJOULE_ARGS": "-m" + MACHINE})
+    check(r.returncode == 0 and annotated(r.stdout), "-mPROFILE: %r" % r.stderr.decode())
+    with open(program_file, "rb") as f:
+        check(f.read() == original, "ARGS --in-place: the original file was modified")
+
+    case("a time limit: an ncjoule that takes too long is stopped, the program shown as it is")
+    slow = os.path.join(folder, "slow-ncjoule")
+    with open(slow, "w") as f:
+        f.write("#!/bin/sh\nexec sleep 30\n")
+    os.chmod(slow, 0o755)
+    import time
+    started = time.monotonic()
+    r = run_filter("%s --ncjoule %s --machine %s" % (q(FILTER), q(slow), q(MACHINE)), program_file,
+                   {"NCJOULE_TIMEOUT": "1"})
+    took = time.monotonic() - started
+    check(r.returncode == 0 and r.stdout == original and "was stopped" in r.stderr.decode(),
+          "timeout: exit %d %r" % (r.returncode, r.stderr.decode()))
+    check(took < 10, "timeout: took %.1f s" % took)
+    r = run_filter(base, program_file, {"NCJOULE_TIMEOUT": "soon"})
+    check(r.returncode == 0 and r.stdout == original and "TIMEOUT" in r.stderr.decode(),
+          "bad timeout: %r" % r.stderr.decode())
 
     case("unreadable file: non-zero exit")
     r = run_filter(base, os.path.join(folder, "does-not-exist.ngc"))

@@ -135,6 +135,40 @@ TEST_CASE("a negative acceleration is refused") {
   CHECK(e.reason().find("greater than zero") != std::string::npos);
 }
 
+TEST_CASE("a value no machine can have is refused with its line and column, not computed with") {
+  // Each gave 150- to 300-digit times and energies, or a negative energy (-59 kWh).
+  const std::pair<const char*, const char*> cases[] = {
+      {"accel_mm_s2", "accel_mm_s2 = 1e-300"},
+      {"jerk_mm_s3", "jerk_mm_s3 = 1e-300"},
+      {"cutting_efficiency", "cutting_efficiency = 1e-300"},
+      {"move_ka_w", "move_ka_w = -1e6"},
+      {"accel_mm_s2", "accel_mm_s2 = 1e300"},
+      {"rapid_mm_min", "rapid_mm_min = 1e-9"},
+      {"tool_change_s", "tool_change_s = 1e9"},
+      {"spindle_max_rpm", "spindle_max_rpm = 1e9"},
+      {"price_per_kwh", "price_per_kwh = 1e9"},
+      {"c4", "c4 = 50"},
+  };
+  for (auto [key, line] : cases) {
+    const std::string text = line;
+    CAPTURE(text);
+    const ProfileError e = refusal(with_line(key, line));
+    CHECK(e.key().find(key) != std::string::npos);
+    CHECK(e.line() > 0);
+    CHECK(e.column() > 0);
+    CHECK((e.reason().find("no machine's") != std::string::npos ||
+           e.reason().find("physically") != std::string::npos ||
+           e.reason().find("plausible") != std::string::npos));
+  }
+  // The range is said in the unit the key was written in.
+  CHECK(
+      refusal(with_line("accel_mm_s2", "accel_m_s2 = 1e-300")).reason().find("from 0.001 to 100") !=
+      std::string::npos);
+  // What a real machine has passes: a small negative intercept of a fitted line, zero jerk.
+  CHECK_NOTHROW(parse_profile(with_line("move_ka_w", "move_ka_w = -120"), "ok.toml"));
+  CHECK_NOTHROW(parse_profile(with_line("jerk_mm_s3", "jerk_mm_s3 = 0"), "ok.toml"));
+}
+
 TEST_CASE("a zero rapid rate is refused") {
   check_names_file_and_key(refusal(with_line("rapid_mm_min", "rapid_mm_min = 0")),
                            "kinematics.x.rapid_mm_min");

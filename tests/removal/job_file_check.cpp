@@ -217,3 +217,30 @@ TEST_CASE("tools given to estimate_program replace header comments: a missing on
     named = named || (d.severity == Severity::Warning && d.message.find("T7") != std::string::npos);
   CHECK(named);
 }
+
+TEST_CASE("job file: tool numbers and sizes checked like --tool's, with their line and column") {
+  auto problems = [](const std::string& tool) {
+    std::vector<Diagnostic> d;
+    const auto job = parse_job_file("[[tool]]\n" + tool, "job.toml", d);
+    CHECK_FALSE(job.has_value());
+    return d;
+  };
+  // 4294967297 is 2^32 + 1: cast to an int it was T1, which then cut with this 50 mm tool.
+  std::vector<Diagnostic> d = problems("number = 4294967297\ntype = \"flat\"\ndiameter_mm = 50\n");
+  REQUIRE_FALSE(d.empty());
+  CHECK(d[0].line == 2);
+  CHECK(d[0].column > 0);
+  CHECK(d[0].message.find("1000000") != std::string::npos);
+  CHECK_FALSE(problems("number = 2\ntype = \"flat\"\ndiameter_mm = inf\n").empty());
+  CHECK_FALSE(problems("number = 2\ntype = \"flat\"\ndiameter_mm = 1e9\n").empty());
+  CHECK_FALSE(
+      problems("number = 2\ntype = \"drill\"\ndiameter_mm = 6\npoint_angle_deg = nan\n").empty());
+  CHECK_FALSE(
+      problems("number = 2\ntype = \"flat\"\ndiameter_mm = 6\nflute_length_mm = -3\n").empty());
+  std::vector<Diagnostic> ok;
+  CHECK(parse_job_file("[[tool]]\nnumber = 1000000\ntype = \"flat\"\ndiameter_mm = 6\n", "job.toml",
+                       ok)
+            .has_value());
+  std::vector<Diagnostic> far;
+  CHECK_FALSE(parse_job_file("[work_offsets_mm]\nG54 = [1e9, 0, 0]\n", "job.toml", far));
+}

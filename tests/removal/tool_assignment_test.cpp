@@ -120,3 +120,20 @@ TEST_CASE("a LinuxCNC tool table's diameters become tools, shapes read from the 
   CHECK(tools.at(3).shape == ToolShape::Drill);
   CHECK(mentions(d, Severity::Note, "T2"));
 }
+
+TEST_CASE("a tool table's numbers are checked as a control takes them: a line out of range is "
+          "skipped, with its line and column") {
+  std::vector<Diagnostic> d;
+  const SourceFile tbl =
+      make_source("tool.tbl", "T1 P1 D6\nT4294967297 P2 D50\nT3 P3 D-4\n"
+                              "T4 P4 D9000000\nT5 P5 Z100000000 D6\nT2.5 P6 D6\nT6 P7 Dx\n");
+  const ToolTable table = parse_tool_table(tbl, false, d);
+  CHECK(table.size() == 1); // T1 alone: T4294967297 would have wrapped into T1
+  CHECK(table.at(1).diameter == doctest::Approx(6));
+  REQUIRE(d.size() == 6); // the last: D's value no number
+  for (int k = 0; k < 6; ++k) {
+    CHECK(d[k].severity == Severity::Error);
+    CHECK(d[k].line == k + 2);
+    CHECK(d[k].column > 0);
+  }
+}

@@ -4,11 +4,11 @@
 // Every source line is kept byte for byte. A block that moves or takes time gets one comment
 // after its code and before any comment already on the line (or, when the line has no room, on
 // a line of its own before it); a few header lines with the totals go after the program's
-// leading %, O-number and title lines. Every inserted comment carries the
-// marker "NCJ" and a checksum of its own text sealed with the file's key (or, without a header,
-// with its block's line), so that strip() removes exactly what annotate() inserted and nothing a
-// user wrote, nor an annotation copied from another file: strip(annotate(x)) == x,
-// annotate(annotate(x)) == annotate(x). No I/O here: the command line reads and writes the files.
+// leading %, O-number and title lines. Every inserted comment starts with the marker "NCJ"; the
+// header's first line, the seal, counts them and holds a hash of them all, so that strip()
+// removes exactly what annotate() inserted and nothing a user wrote, nor an annotation copied
+// from another file: strip(annotate(x)) == x, annotate(annotate(x)) == annotate(x). No I/O here:
+// the command line reads and writes the files.
 #pragma once
 
 #include <cstddef>
@@ -73,6 +73,15 @@ AnnotatedProgram annotate_program(std::string path, std::string_view text,
 // The text without ncjoule's annotations: inserted header lines (with their line endings) and
 // inserted comments (with the space before them) are removed; every other byte is kept.
 std::string strip(std::string_view text);
+
+// strip(), and whether the annotations were taken out by their form rather than by the seal
+// that counts them (the file was edited after it was annotated, or its header deleted): then a
+// comment of that form a user added since went too (docs/annotation.md).
+struct StripResult {
+  std::string text;
+  bool by_form = false;
+};
+StripResult strip_checked(std::string_view text);
 
 // True when the text holds at least one annotation strip() would remove.
 bool has_annotations(std::string_view text);

@@ -78,6 +78,9 @@ struct FitReport {
   double r_squared = 0;
   bool converged = false;
   std::string message; // solver or covariance trouble, empty when all went well
+  // Why the data cannot be fitted at all (too few rows, one value only where a slope needs two,
+  // numbers a solver would overflow on); nothing is fitted then and apply_fit changes nothing.
+  std::string refused;
 
   const FittedConstant* find(PowerParameter p) const;
 };

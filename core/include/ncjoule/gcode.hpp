@@ -126,6 +126,12 @@ struct Dialect {
   // models (chip conveyor, air blast, axis brakes, messages): read without a warning. Each
   // family's manual names its own; a code outside the list stays an "unknown code" warning.
   std::vector<int> machine_m_codes;
+  // G16/G15 polar coordinates (Fanuc, Haas, Mach3, Sinumerik in ISO mode): in the plane's
+  // first axis word the radius, in its second the angle (degrees, counterclockwise from the first
+  // axis). Fanuc measures the radius from the work zero under G90 and from the current point
+  // under G91; Mach3 from the point where G16 was read (polar_pole_at_g16).
+  bool polar_g16 = false;
+  bool polar_pole_at_g16 = false;
   // A program streamed line by line with no end code (Marlin has no M2/M30 of its own): ending
   // at the end of the file is a note, not a warning.
   bool end_code_optional = false;

@@ -14,6 +14,11 @@
 
 namespace ncjoule {
 
+// The largest tool number ncjoule takes, from the command line (--tool), a job file or a tool
+// table alike: controls number tools in the hundreds or thousands; beyond a million a number is
+// a slip (and past 2^31 it would wrap into another tool's).
+inline constexpr int kMaxToolNumber = 1000000;
+
 enum class ToolShape : std::uint8_t {
   FlatEndMill,
   BallEndMill,

@@ -321,6 +321,7 @@ InterpretResult Interpreter::run() {
         for (char& ch : lowered)
           ch = char(std::tolower(static_cast<unsigned char>(ch)));
         if (lowered == "msg,") emit_simple(CanonKind::Message, 0, std::string(t.substr(4)));
+        commented_tool_change(c);
       }
     }
     if (next_pc_ <= pc_ && options_.max_loop_iterations &&

@@ -259,13 +259,17 @@ std::size_t OperationTracker::take(const CanonCommand& command, const TimedComma
     comment = first_between(last_line_, line);
   Op& now = ops_[current_];
   // An operation started by its comment that has not moved yet: a later comment names it.
-  const bool unnamed = current_ != 0 && now.comment_line >= 0 && !now.cut && !now.moved;
+  // Not once a tool change has followed its comment: "(Profiles)" / "T2 M6" / "(Profile:
+  // Layer 6)" is the operation Profiles.
+  const bool unnamed =
+      current_ != 0 && now.comment_line >= 0 && !now.cut && !now.moved && !now.changed_tool;
   if (command.kind == CanonKind::ChangeTool) {
     if (now.comment_line >= 0 && !now.cut && current_ != 0) {
       // The post's comment came first ("(FACE1)", "M9", "G28 G91 Z0", "T1 M6"): one operation.
       if (comment && unnamed) rename(*comment);
       ops_[current_].summary.tool = int(std::lround(command.value));
       ops_[current_].summary.line = line;
+      ops_[current_].changed_tool = true;
     } else {
       current_ = start(line, -1, command, timed.start_s);
     }

@@ -44,9 +44,10 @@ public:
 private:
   struct Op {
     OperationSummary summary;
-    int comment_line = -1; // the comment that started it (-1: a tool change did)
-    bool cut = false;      // it has cut
-    bool moved = false;    // it has moved an axis (a rapid, a feed)
+    int comment_line = -1;     // the comment that started it (-1: a tool change did)
+    bool cut = false;          // it has cut
+    bool moved = false;        // it has moved an axis (a rapid, a feed)
+    bool changed_tool = false; // started by its comment, a tool change followed: it is named
   };
   std::size_t start(int line, int comment_line, const CanonCommand& command, double start_s);
   // The operation comment an operation that has neither cut nor moved meets before it does: a

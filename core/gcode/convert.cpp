@@ -229,6 +229,8 @@ void Interpreter::commented_tool_change(const Comment& comment) {
   if (!change || !tool || *tool == state_.tool) return;
   state_.tool = selected_tool_ = *tool;
   params_.at(param::kToolNumber) = state_.tool;
+  // Selected here, as the comment says: the tool controller's label above it describes it.
+  emit_simple(CanonKind::SelectTool, state_.tool);
   note(comment.column, "the tool change '" + std::string(trim(comment.text)) +
                            "' is written as a comment (grbl has no tool changer; the tool is "
                            "changed by hand): the cuts that follow are taken to run with T" +

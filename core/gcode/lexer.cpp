@@ -441,7 +441,7 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       }
       b.keywords.push_back(k);
       p = q;
-    } else if (const std::string number = c == 'o' && !dialect.lenient_words
+    } else if (const std::string number = c == 'o' && dialect.name != "reprap"
                                               ? number_around_o(code, p, b.columns)
                                               : std::string();
                !number.empty()) {

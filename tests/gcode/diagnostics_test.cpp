@@ -69,6 +69,15 @@ TEST_CASE("typos every control refuses are errors with line and column in every 
       CHECK(moves(p).size() == 1); // the block is not run: no move at F1, to X0 or to X0.2
     }
   }
+  // With no dialect named or recognised, a letter alone and two points are warnings (the
+  // program may be Marlin's: MPCNC posts write "G28 Z" and "M0 Turn ON spindle"); an O inside a
+  // number is a typo whatever the control.
+  const Toolpath unnamed =
+      run("G21\nG28 Z\nM0 Turn ON spindle\nG1 X0..2 F100\nG1 X5 F1O8.\nM2\n", "");
+  const auto unnamed_errors = with_severity(unnamed, Severity::Error);
+  REQUIRE(unnamed_errors.size() == 1);
+  CHECK(unnamed_errors[0].line == 5);
+  CHECK_FALSE(with_severity(unnamed, Severity::Warning).empty());
   // Marlin reads them (a letter alone is a flag: "G28 X Y"; the rest of a number is skipped).
   const Toolpath marlin = run("G21\nG28 X Y\nG1 X5 F1O8.\nM2\n", "reprap");
   CHECK(errors(marlin) == 0);

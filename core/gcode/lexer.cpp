@@ -454,7 +454,10 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       std::size_t at = p + 1;
       if (at < code.size() && code[at] == '=' && is_letter(c)) ++at; // Sinumerik "X=10"
       std::size_t len = value_length(code, at, brackets);
-      if (len == 0 && is_letter(c) && !dialect.lenient_words && !starts_expression(code, at)) {
+      // Sinumerik's "Y=COS (0)": a value after '=' this lexer does not read, not a letter alone.
+      const bool assigned = at > p + 1 && at < code.size();
+      if (len == 0 && is_letter(c) && !dialect.lenient_words && !assigned &&
+          !starts_expression(code, at)) {
         add_error(b, b.columns[p],
                   "word '" + upper(std::string_view(&c, 1)) +
                       "' has no value: the control refuses the block (LinuxCNC: no characters "

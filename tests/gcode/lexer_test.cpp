@@ -90,7 +90,7 @@ TEST_CASE("O-words and Fanuc program numbers") {
   CHECK(header.o_keyword.empty());
 }
 
-TEST_CASE("lexical problems carry the column; those the control refuses are errors") {
+TEST_CASE("lexical problems carry the column, and those the control refuses are errors") {
   Block b = lex("G1 X1 Y");
   REQUIRE(b.errors.size() == 1); // a word with no value: rs274 refuses the block
   CHECK(b.errors[0].column == 7);

@@ -241,10 +241,10 @@ void OperationTracker::rename(int comment_line) {
 
 std::size_t OperationTracker::take(const CanonCommand& command, const TimedCommand& timed) {
   const int line = command.line;
-  // Operation comments are looked for between the block that ran last and this one: in the
-  // main program between their calls when either is in a subprogram (after Estlcam's stops, an
-  // O-word macro: not from the subprogram's body to this block), and within one subprogram's
-  // body from one of its blocks to the next.
+  // Operation comments are looked for in the main program, between the block that ran last
+  // and this one, a subprogram's blocks standing at their call: after Estlcam's stops (O-word
+  // subprograms), between their call and this block, never in a subprogram's body (the comments
+  // above a subprogram describe it, not an operation of the program).
   const int at = command.call_line;
   std::optional<int> comment; // the first one there
   auto first_between = [&](int after, int before) -> std::optional<int> {
@@ -252,11 +252,7 @@ std::size_t OperationTracker::take(const CanonCommand& command, const TimedComma
     if (it != comment_lines_.end() && *it < before) return *it;
     return std::nullopt;
   };
-  if (at > last_call_line_)
-    comment = first_between(last_call_line_, at);
-  else if (at == last_call_line_ && line != at && last_line_ != last_call_line_ &&
-           line > last_line_)
-    comment = first_between(last_line_, line);
+  if (at > last_call_line_) comment = first_between(last_call_line_, at);
   Op& now = ops_[current_];
   // An operation started by its comment that has not moved yet: a later comment names it.
   // Not once a tool change has followed its comment: "(Profiles)" / "T2 M6" / "(Profile:

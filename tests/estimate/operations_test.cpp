@@ -230,7 +230,7 @@ TEST_CASE("the time split: rapids, cutting, air cutting, tool changes, dwells ad
   CHECK(air == doctest::Approx(t.air_cut_s));
 }
 
-TEST_CASE("FreeCAD's first operation is named, not 'before first operation'; a grbl post's "
+TEST_CASE("FreeCAD's first operation is named, not 'before first operation', and a grbl post's "
           "commented tool change gives the tool") {
   // FreeCAD's grbl post (block mode): a fixture and a tool controller before the first
   // operation, the tool change written as a comment (grbl has no changer).

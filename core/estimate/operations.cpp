@@ -76,7 +76,11 @@ bool is_note(const std::string& l) {
       "map:",                                               // a generator's dump of its settings
       // FreeCAD's block mode and toolchange markers, section markers.
       "block-expand", "block-enable", "path:", "begin toolchange", "post_amble", "pre_amble",
-      "section end"};
+      "section end",
+      // NX posts' comments on each move and event of a path (the events of Post Builder).
+      "linear move", "circular move", "helical move", "engage move", "approach move",
+      "departure move", "return move", "initial move", "first move", "gohome move", "from move",
+      "start of path", "end of path", "cutcom"};
   for (const char* note : kNotes)
     if (starts_with(l, note)) return true;
   return false;
@@ -224,26 +228,64 @@ std::size_t OperationTracker::start(int line, int comment_line, const CanonComma
   return it->second;
 }
 
+void OperationTracker::rename(int comment_line) {
+  Op& now = ops_[current_];
+  if (now.comment_line == comment_line) return;
+  by_line_.erase(now.comment_line);
+  const auto [it, inserted] = by_line_.try_emplace(comment_line, current_);
+  if (inserted)
+    now.comment_line = comment_line;
+  else
+    current_ = it->second; // a loop runs the named operation again
+}
+
 std::size_t OperationTracker::take(const CanonCommand& command, const TimedCommand& timed) {
   const int line = command.line;
+  // Operation comments are looked for in the main program, between the block that ran last
+  // and this one, a subprogram's blocks standing at their call: after Estlcam's stops (O-word
+  // subprograms), between their call and this block, never in a subprogram's body (the comments
+  // above a subprogram describe it, not an operation of the program).
+  const int at = command.call_line;
+  std::optional<int> comment; // the first one there
+  auto first_between = [&](int after, int before) -> std::optional<int> {
+    const auto it = std::upper_bound(comment_lines_.begin(), comment_lines_.end(), after);
+    if (it != comment_lines_.end() && *it < before) return *it;
+    return std::nullopt;
+  };
+  if (at > last_call_line_) comment = first_between(last_call_line_, at);
+  Op& now = ops_[current_];
+  // An operation started by its comment that has not moved yet: a later comment names it.
+  // Not once a tool change has followed its comment: "(Profiles)" / "T2 M6" / "(Profile:
+  // Layer 6)" is the operation Profiles.
+  const bool unnamed =
+      current_ != 0 && now.comment_line >= 0 && !now.cut && !now.moved && !now.changed_tool;
   if (command.kind == CanonKind::ChangeTool) {
-    Op& now = ops_[current_];
     if (now.comment_line >= 0 && !now.cut && current_ != 0) {
       // The post's comment came first ("(FACE1)", "M9", "G28 G91 Z0", "T1 M6"): one operation.
-      now.summary.tool = int(std::lround(command.value));
-      now.summary.line = line;
+      if (comment && unnamed) rename(*comment);
+      ops_[current_].summary.tool = int(std::lround(command.value));
+      ops_[current_].summary.line = line;
+      ops_[current_].changed_tool = true;
     } else {
       current_ = start(line, -1, command, timed.start_s);
     }
-  } else if (line > last_line_ && ops_[current_].cut) {
-    // An operation comment between the last line that ran and this one starts the next
-    // operation, once this one has cut.
-    const auto it = std::upper_bound(comment_lines_.begin(), comment_lines_.end(), last_line_);
-    if (it != comment_lines_.end() && *it < line)
-      current_ = start(line, *it, command, timed.start_s);
+  } else if (comment) {
+    if (now.cut || (current_ == 0 && last_line_ >= 0) || (now.comment_line >= 0 && now.moved)) {
+      // The next operation starts once this one has cut; the first one (FreeCAD's, Estlcam's
+      // "No. 1") once the program's preamble has run, and not at the header's comments above
+      // it; one after an operation of moves and stops only (Estlcam's "Stop After ...").
+      current_ = start(line, *comment, command, timed.start_s);
+    } else if (unnamed) {
+      rename(*comment);
+    }
   }
-  if (current_ == 0 && ops_[0].summary.tool == 0) ops_[0].summary.tool = command.state.tool;
+  // Until it cuts, an operation takes the tool in the spindle: one changed by hand where the
+  // post wrote the change as a comment (FreeCAD's grbl post) is the one it cuts with.
+  if (Op& op = ops_[current_];
+      !op.cut && command.kind != CanonKind::ChangeTool && (current_ != 0 || op.summary.tool == 0))
+    op.summary.tool = command.state.tool;
   last_line_ = line;
+  last_call_line_ = at;
   return current_;
 }
 
@@ -258,6 +300,7 @@ void OperationTracker::add(std::size_t op, CanonKind kind, double duration_s, do
     o.summary.components_j[c] += components_j[c];
   o.summary.time.add(kind, duration_s, removed_mm3 > 0, removal_known);
   if (is_feed_move(kind)) o.cut = true;
+  if (is_move(kind)) o.moved = true;
 }
 
 std::string OperationTracker::name_of(const Op& op, const std::function<bool(int)>& stops) const {

@@ -44,10 +44,16 @@ public:
 private:
   struct Op {
     OperationSummary summary;
-    int comment_line = -1; // the comment that started it (-1: a tool change did)
-    bool cut = false;      // it has cut
+    int comment_line = -1;     // the comment that started it (-1: a tool change did)
+    bool cut = false;          // it has cut
+    bool moved = false;        // it has moved an axis (a rapid, a feed)
+    bool changed_tool = false; // started by its comment, a tool change followed: it is named
   };
   std::size_t start(int line, int comment_line, const CanonCommand& command, double start_s);
+  // The operation comment an operation that has neither cut nor moved meets before it does: a
+  // set-up note ("FLIP PART"), a fixture's or a tool controller's name (FreeCAD) named it, and
+  // the operation is the one named last before its cuts.
+  void rename(int comment_line);
   std::string name_of(const Op& op, const std::function<bool(int)>& stops) const;
 
   const SourceFile& source_;
@@ -56,7 +62,8 @@ private:
   std::vector<Op> ops_;
   std::map<int, std::size_t> by_line_; // an operation's start line (a loop runs it again)
   std::size_t current_ = 0;
-  int last_line_ = -1;
+  int last_line_ = -1;      // the block that ran last
+  int last_call_line_ = -1; // its line in the main program (a subprogram's: the call's)
 };
 
 } // namespace ncjoule::estimate_detail

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 
 #include "codes.hpp"
+#include "ncjoule/text.hpp"
 #include "value_limits.hpp"
 
 namespace ncjoule::detail {
@@ -198,11 +200,52 @@ void Interpreter::convert_tool(const BlockValues& v) {
       }
       state_.tool = selected_tool_;
       params_.at(param::kToolNumber) = state_.tool;
+      tool_changed_ = true;
       emit_simple(CanonKind::ChangeTool, state_.tool);
     } else if (m == 61) {
       if (v.has('q')) state_.tool = selected_tool_ = int(std::lround(*v['q']));
     }
   }
+}
+
+// FreeCAD's grbl post writes every tool change as a comment ("( M6 T2 )"): grbl has no tool
+// changer, and the operator changes the tool by hand at that point. The cuts after it are made
+// with that tool, not with the one before it. Read so only while the program has run no M6 of
+// its own: where it has, a commented-out change is one the programmer took out.
+void Interpreter::commented_tool_change(const Comment& comment) {
+  if (tool_changed_) return;
+  std::optional<int> tool;
+  bool change = false;
+  std::size_t i = 0;
+  const std::string_view t = comment.text;
+  while (i < t.size()) {
+    if (t[i] == ' ' || t[i] == '\t') {
+      ++i;
+      continue;
+    }
+    const char letter = char(std::tolower(static_cast<unsigned char>(t[i])));
+    std::size_t j = i + 1;
+    while (j < t.size() && std::isdigit(static_cast<unsigned char>(t[j])))
+      ++j;
+    if (j == i + 1 || (j < t.size() && t[j] != ' ' && t[j] != '\t')) return; // not a word
+    const int number = std::atoi(std::string(t.substr(i + 1, j - i - 1)).c_str());
+    if (letter == 'm' && number == 6)
+      change = true;
+    else if (letter == 't' && !tool)
+      tool = number;
+    else
+      return; // other code: not a tool change alone
+    i = j;
+  }
+  if (!change || !tool || *tool == state_.tool) return;
+  state_.tool = selected_tool_ = *tool;
+  params_.at(param::kToolNumber) = state_.tool;
+  // Selected here, as the comment says: the tool controller's label above it describes it.
+  emit_simple(CanonKind::SelectTool, state_.tool);
+  note(comment.column, "the tool change '" + std::string(trim(comment.text)) +
+                           "' is written as a comment (grbl has no tool changer; the tool is "
+                           "changed by hand): the cuts that follow are taken to run with T" +
+                           std::to_string(*tool) + ", with no tool-change time");
 }
 
 // 8. Spindle, 9. coolant.

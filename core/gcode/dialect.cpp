@@ -133,6 +133,7 @@ std::vector<Dialect> make_dialects() {
   // M107), report position (M114), feed and flow overrides (M220, M221): no motion of their own.
   reprap.machine_m_codes = {17, 18, 84, 106, 107, 114, 117, 220, 221, 400};
   reprap.end_code_optional = true;
+  reprap.lenient_words = true;
   all.push_back(reprap);
   return all;
 }

@@ -35,6 +35,9 @@ Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& opt
   result_.dialect = dialect_;
   result_.dialect_origin = choice.origin;
   result_.dialect_reason = choice.reason;
+  // Nor is a letter alone or text after a number: Marlin reads "G28 Z" and "M0 Turn ON
+  // spindle" (an MPCNC post's prompts). The letter O inside a number stays an error.
+  if (!strict_) dialect_.lenient_words = true;
   retract_to_r_ = dialect_.retract_to_r_by_default;
   arc_incremental_ = !dialect_.arc_centre_absolute;
   params_.set_system_lookup(
@@ -321,6 +324,7 @@ InterpretResult Interpreter::run() {
         for (char& ch : lowered)
           ch = char(std::tolower(static_cast<unsigned char>(ch)));
         if (lowered == "msg,") emit_simple(CanonKind::Message, 0, std::string(t.substr(4)));
+        commented_tool_change(c);
       }
     }
     if (next_pc_ <= pc_ && options_.max_loop_iterations &&

@@ -233,6 +233,8 @@ private:
   void error(int column, std::string message);
   void warning(int column, std::string message);
   void note(int column, std::string message);
+  // A tool change written as a comment ("( M6 T2 )": FreeCAD's grbl post, grbl has no changer).
+  void commented_tool_change(const Comment& comment);
   void stop() { finished_ = true; }
 
   double unit() const { return state_.inch ? 25.4 : 1.0; }
@@ -319,6 +321,7 @@ private:
   bool arc_offsets_reversed_ = false;          // I/J/K read from the centre to the start
   std::size_t arcs_fitting_only_standard_ = 0; // I/J/K arcs that fit only the standard way
   int selected_tool_ = 0;
+  bool tool_changed_ = false; // an M6 of the program's own has run
   // Sticky canned-cycle values (program units).
   double cycle_r_ = 0, cycle_z_ = 0, cycle_q_ = 0, cycle_p_ = 0;
   bool have_cycle_r_ = false, have_cycle_z_ = false;

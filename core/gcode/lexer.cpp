@@ -98,6 +98,38 @@ bool is_name_char(char c) {
   return is_letter(c) || is_digit(c) || c == '_';
 }
 
+std::string upper(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    c = char(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// Whether what follows a word's letter at `at` sets out to be a value (a bracket or a parameter
+// after any signs) that does not close: a broken expression, not a letter left alone.
+bool starts_expression(std::string_view code, std::size_t at) {
+  while (at < code.size() && (code[at] == '+' || code[at] == '-'))
+    ++at;
+  return at < code.size() && (code[at] == '[' || code[at] == '#');
+}
+
+// The number around an 'O' at code[p] when it stands inside one, with no blank on either side
+// ("F1O8.": a zero typed as the letter O); empty otherwise. An O word of its own in the middle
+// of a block is left to the interpreter: nccad's "M10 O6.0" sets an output.
+std::string number_around_o(std::string_view code, std::size_t p, const std::vector<int>& columns) {
+  auto adjacent = [&](std::size_t q) { return columns[q + 1] == columns[q] + 1; };
+  std::size_t begin = p;
+  while (begin > 0 && adjacent(begin - 1) && (is_digit(code[begin - 1]) || code[begin - 1] == '.'))
+    --begin;
+  if (begin == p || begin == 0 || !adjacent(begin - 1) || !is_letter(code[begin - 1]) ||
+      p + 1 >= code.size() || !adjacent(p) || !is_digit(code[p + 1]))
+    return {};
+  std::size_t end = p + 1;
+  while (end < code.size() && (is_digit(code[end]) || code[end] == '.'))
+    ++end;
+  return upper(code.substr(begin - 1, end - begin + 1));
+}
+
 } // namespace
 
 void Block::clear() {
@@ -425,10 +457,29 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
       }
       b.keywords.push_back(k);
       p = q;
+    } else if (const std::string number = c == 'o' && dialect.name != "reprap"
+                                              ? number_around_o(code, p, b.columns)
+                                              : std::string();
+               !number.empty()) {
+      add_error(b, b.columns[p],
+                "the letter O inside the number '" + number +
+                    "' (a zero typed as O?): the control refuses the block (LinuxCNC: bad "
+                    "character 'o'; Fanuc and Haas alarm)");
+      return;
     } else if (is_letter(c) || c == '@' || c == '^') {
       std::size_t at = p + 1;
       if (at < code.size() && code[at] == '=' && is_letter(c)) ++at; // Sinumerik "X=10"
       std::size_t len = value_length(code, at, brackets);
+      // Sinumerik's "Y=COS (0)": a value after '=' this lexer does not read, not a letter alone.
+      const bool assigned = at > p + 1 && at < code.size();
+      if (len == 0 && is_letter(c) && !dialect.lenient_words && !assigned &&
+          !starts_expression(code, at)) {
+        add_error(b, b.columns[p],
+                  "word '" + upper(std::string_view(&c, 1)) +
+                      "' has no value: the control refuses the block (LinuxCNC: no characters "
+                      "found in reading real value; Fanuc and Haas alarm)");
+        return;
+      }
       if (len == 0) {
         add_warning(b, b.columns[p], [&] {
           return std::string("word '") + char(std::toupper(c)) +
@@ -438,6 +489,17 @@ void lex_line(std::string_view line, const Dialect& dialect, Block& b) {
         continue;
       }
       std::size_t next = at + len;
+      if (next < code.size() && code[next] == '.' && !dialect.lenient_words &&
+          (is_digit(code[next - 1]) || code[next - 1] == '.')) {
+        std::size_t end = next;
+        while (end < code.size() && (is_digit(code[end]) || code[end] == '.'))
+          ++end;
+        add_error(b, b.columns[p],
+                  "two decimal points in '" + upper(code.substr(p, end - p)) +
+                      "': the control refuses the block (LinuxCNC: bad number format; Fanuc "
+                      "and Haas alarm)");
+        return;
+      }
       if (next < code.size() && code[next] == '=') {
         // "R1=5" (Sinumerik R parameters) and the like: an assignment this interpreter does
         // not keep.

@@ -229,3 +229,154 @@ TEST_CASE("the time split: rapids, cutting, air cutting, tool changes, dwells ad
     air += op.time.air_cut_s;
   CHECK(air == doctest::Approx(t.air_cut_s));
 }
+
+TEST_CASE("FreeCAD's first operation is named, not 'before first operation', and a grbl post's "
+          "commented tool change gives the tool") {
+  // FreeCAD's grbl post (block mode): a fixture and a tool controller before the first
+  // operation, the tool change written as a comment (grbl has no changer).
+  const Estimate e = run("(Exported by FreeCAD)\n"
+                         "(Begin preamble)\n"
+                         "G17 G90\n"
+                         "G21\n"
+                         "(Block-name: Fixture)\n"
+                         "(Begin operation: Fixture)\n"
+                         "(Path: Fixture)\n"
+                         "G54\n"
+                         "(Finish operation: Fixture)\n"
+                         "(Block-name: 3mm Endmill001)\n"
+                         "(Begin operation: 3mm Endmill001)\n"
+                         "(3mm Endmill001)\n"
+                         "(Begin toolchange)\n"
+                         "( M6 T2 )\n"
+                         "M3 S10000\n"
+                         "(Finish operation: 3mm Endmill001)\n"
+                         "(Block-name: Profile_hole)\n"
+                         "(Begin operation: Profile_hole)\n"
+                         "(Profile_hole)\n"
+                         "G0 Z6\n"
+                         "G0 X0 Y0\n"
+                         "G1 Z-1 F400\n"
+                         "G1 X10\n"
+                         "(Finish operation: Profile_hole)\n"
+                         "(Block-name: Adaptive)\n"
+                         "(Begin operation: Adaptive)\n"
+                         "(Adaptive)\n"
+                         "G0 Z6\n"
+                         "G1 Z-1\n"
+                         "G1 Y10\n"
+                         "M2\n");
+  REQUIRE(names(e) == std::vector<std::string>{"Profile_hole", "Adaptive"});
+  CHECK(e.operations[0].tool == 2);
+  CHECK(e.operations[1].tool == 2);
+  CHECK(e.operations[0].time_s > 0);
+  // The tool controller's label above the commented change describes T2.
+  REQUIRE(e.tools.count(2) == 1);
+  CHECK(e.tools.at(2).diameter_mm == doctest::Approx(3));
+  bool noted = false;
+  for (const Diagnostic& d : e.diagnostics)
+    noted = noted || (d.line == 14 && d.message.find("T2") != std::string::npos);
+  CHECK(noted);
+  // A program that changes tools itself keeps its own: a commented-out change is one taken out.
+  const Estimate own = run("G21\nT1 M6\nS1000 M3\n( M6 T2 )\nG1 X5 F100\nM2\n");
+  REQUIRE_FALSE(own.operations.empty());
+  CHECK(own.operations.back().tool == 1);
+}
+
+TEST_CASE("Estlcam's stop between operations keeps its own name, not the next one's time") {
+  // Estlcam writes a stop as an operation of its own: rapids away, and O-word subprograms
+  // (defined inline) that park the machine and pause.
+  const Estimate e = run("(Project Enclosure)\n"
+                         "(Created by Estlcam version 10 build 10.012)\n"
+                         "G90\n"
+                         "M03 S12000\n"
+                         "G00 Z5\n"
+                         "(No. 1: Mill Right Hole)\n"
+                         "G00 X2 Y0\n"
+                         "G01 Z-1 F100\n"
+                         "G01 X4\n"
+                         "G00 Z5\n"
+                         "(No. 2: Stop After Right Hole)\n"
+                         "G00 X0 Y0 Z5\n"
+                         "O100 sub\n"
+                         "G00 Z25\n"
+                         "G00 Y-50\n"
+                         "O100 endsub\n"
+                         "O110 sub\n"
+                         "M00\n"
+                         "G00 X0\n"
+                         "O110 endsub\n"
+                         "O100 call\n"
+                         "(MSG,Rotate 90 degrees - next hole is the LEFT SIDE)\n"
+                         "O110 call\n"
+                         "(No. 3: Mill Left Hole)\n"
+                         "G00 X10 Y0 Z5\n"
+                         "G01 Z-1 F100\n"
+                         "G01 X40\n"
+                         "G01 Y20\n"
+                         "G00 Z5\n"
+                         "M30\n");
+  REQUIRE(names(e) == std::vector<std::string>{"before first operation", "No. 1: Mill Right Hole",
+                                               "No. 2: Stop After Right Hole",
+                                               "No. 3: Mill Left Hole"});
+  CHECK(e.operations[2].line == 11);
+  CHECK(e.operations[3].line == 24);
+  // The stop holds its rapids, the next operation its cuts.
+  CHECK(e.operations[3].time_s > e.operations[1].time_s);
+  CHECK(e.operations[3].time_s > 15); // 30 mm + 20 mm at 100 mm/min
+}
+
+TEST_CASE("NX's motion comments and a Fusion set-up note name no operation") {
+  // NX posts describe each move in a comment; a Fusion program's manual "FLIP PART" note comes
+  // before the operation it precedes.
+  const Estimate nx = run("%\nO0001\n"
+                          "N0010 G40 G17 G90 G71\n"
+                          "(FACE_MILLING)\n"
+                          "N0020 T01 M06\n"
+                          "N0030 G0 G90 X0 Y0 S3000 M03\n"
+                          "(Linear move)\n"
+                          "N0040 G1 Z-1 F200\n"
+                          "(Circular move CCLW XY plane)\n"
+                          "N0050 G3 X10 Y0 I5 J0\n"
+                          "(Linear move)\n"
+                          "N0060 G1 X20\n"
+                          "(Rapid move)\n"
+                          "N0070 G0 Z5\n"
+                          "(Circular move CLW XY plane)\n"
+                          "N0080 G2 X30 Y0 I5 J0\n"
+                          "M30\n%\n");
+  CHECK(names(nx) == std::vector<std::string>{"FACE_MILLING"});
+  CHECK(operation_name_in("Circular move CCLW XY plane").empty());
+  CHECK(operation_name_in("Linear move").empty());
+  CHECK(operation_name_in("Engage move").empty());
+  const Estimate flip = run("%\nO1001\n"
+                            "(FACE TOP)\n"
+                            "T1 M6\n"
+                            "S5000 M3\n"
+                            "G0 X0 Y0 Z5\n"
+                            "G1 Z-1 F300\n"
+                            "G1 X20\n"
+                            "G0 Z5\n"
+                            "M5\n"
+                            "(FLIP PART)\n"
+                            "M0\n"
+                            "(FACE BOTTOM)\n"
+                            "S5000 M3\n"
+                            "G0 X0 Y0 Z5\n"
+                            "G1 Z-1 F300\n"
+                            "G1 X20\n"
+                            "M5\n"
+                            "(FLIP PART)\n"
+                            "M0\n"
+                            "(DRILL)\n"
+                            "T2 M6\n"
+                            "S3000 M3\n"
+                            "G0 X5 Y5 Z5\n"
+                            "G1 Z-3 F100\n"
+                            "M30\n%\n");
+  CHECK(names(flip) == std::vector<std::string>{"FACE TOP", "FACE BOTTOM", "DRILL"});
+  // A comment above a tool change names its operation; one below it (a layer) does not.
+  const Estimate layer = run("G21\n(Pocket)\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nG0 Z5\n"
+                             "(Profiles)\nT2 M6\n(Profile: Layer 6)\nG0 X10 S10000 M3\n"
+                             "G1 Z-1 F300\nG1 X20\nM30\n");
+  CHECK(names(layer) == std::vector<std::string>{"Pocket", "Profiles"});
+}

@@ -23,26 +23,65 @@ TEST_CASE("unknown G and M codes warn with file, line and column, the motion sti
   CHECK(p.result.completed);
 }
 
-TEST_CASE("bad G numbers are errors and skip the block: stray words and characters only warn") {
+TEST_CASE("bad G numbers and bare words are errors and skip the block: stray characters warn") {
   const Toolpath p = run("G21\nG0 X1 Y\nG0 X2 (open comment\nG0 X3 &\nG1.55 X4\nG0 X5\nM2\n");
   const auto e = with_severity(p, Severity::Error);
-  REQUIRE(e.size() == 1);
-  CHECK(e[0].line == 5);
-  CHECK(e[0].column == 1);
+  REQUIRE(e.size() == 2);
+  CHECK(e[0].line == 2); // "Y" with no value: rs274 refuses the block too
+  CHECK(e[0].column == 7);
+  CHECK(e[1].line == 5);
+  CHECK(e[1].column == 1);
   const auto w = with_severity(p, Severity::Warning);
-  REQUIRE(w.size() == 3);
-  CHECK(w[0].line == 2);
+  REQUIRE(w.size() == 2);
+  CHECK(w[0].line == 3);
   CHECK(w[0].column == 7);
-  CHECK(w[1].line == 3);
+  CHECK(w[0].message.find("')'") != std::string::npos);
+  CHECK(w[1].line == 4);
   CHECK(w[1].column == 7);
-  CHECK(w[1].message.find("')'") != std::string::npos);
-  CHECK(w[2].line == 4);
-  CHECK(w[2].column == 7);
   CHECK(moves(p) == std::vector<std::string>{
-                        "STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
                         "STRAIGHT_TRAVERSE(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
                         "STRAIGHT_TRAVERSE(3.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
                         "STRAIGHT_TRAVERSE(5.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"});
+}
+
+TEST_CASE("typos every control refuses are errors with line and column in every dialect") {
+  // The letter O for a zero (F1O8. read as F1 turned a 38 s program into 32 minutes), two
+  // decimal points, a word with no value: rs274 refuses each ("Bad character 'o' used", "bad
+  // number format", "No characters found in reading real value"), Fanuc and Haas alarm.
+  struct Case {
+    const char* line;
+    int column;
+    const char* quoted;
+  };
+  for (const char* dialect : {"linuxcnc", "fanuc", "haas", "grbl", "mach3", "siemens"}) {
+    for (const Case c :
+         {Case{"G1 Z-0.03 F1O8.", 13, "'F1O8.'"}, Case{"G1 X0..2 F100", 4, "'X0..2'"},
+          Case{"G1 X1.2.3 F100", 4, "'X1.2.3'"}, Case{"G1 X F100", 4, "'X'"}}) {
+      CAPTURE(dialect);
+      CAPTURE(c.line);
+      const Toolpath p =
+          run(std::string("G21 G90 G0 X0 Y0 Z1 F100\n") + c.line + "\nM2\n", dialect);
+      const auto e = with_severity(p, Severity::Error);
+      REQUIRE(e.size() == 1);
+      CHECK(e[0].line == 2);
+      CHECK(e[0].column == c.column);
+      CHECK(e[0].message.find(c.quoted) != std::string::npos);
+      CHECK(moves(p).size() == 1); // the block is not run: no move at F1, to X0 or to X0.2
+    }
+  }
+  // With no dialect named or recognised, a letter alone and two points are warnings (the
+  // program may be Marlin's: MPCNC posts write "G28 Z" and "M0 Turn ON spindle"); an O inside a
+  // number is a typo whatever the control.
+  const Toolpath unnamed =
+      run("G21\nG28 Z\nM0 Turn ON spindle\nG1 X0..2 F100\nG1 X5 F1O8.\nM2\n", "");
+  const auto unnamed_errors = with_severity(unnamed, Severity::Error);
+  REQUIRE(unnamed_errors.size() == 1);
+  CHECK(unnamed_errors[0].line == 5);
+  CHECK_FALSE(with_severity(unnamed, Severity::Warning).empty());
+  // Marlin reads them (a letter alone is a flag: "G28 X Y"; the rest of a number is skipped).
+  const Toolpath marlin = run("G21\nG28 X Y\nG1 X5 F1O8.\nM2\n", "reprap");
+  CHECK(errors(marlin) == 0);
+  CHECK(moves(marlin).size() >= 1);
 }
 
 TEST_CASE("a program without M2/M30 warns at its last line") {

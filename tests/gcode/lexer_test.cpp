@@ -90,18 +90,41 @@ TEST_CASE("O-words and Fanuc program numbers") {
   CHECK(header.o_keyword.empty());
 }
 
-TEST_CASE("lexical problems carry the column and cost only the word") {
+TEST_CASE("lexical problems carry the column, and those the control refuses are errors") {
   Block b = lex("G1 X1 Y");
-  CHECK(b.errors.empty());
-  REQUIRE(b.warnings.size() == 1);
-  CHECK(b.warnings[0].column == 7);
-  CHECK(b.words.size() == 2);
+  REQUIRE(b.errors.size() == 1); // a word with no value: rs274 refuses the block
+  CHECK(b.errors[0].column == 7);
+  Block broken = lex("G1 X1 Y[1");
+  CHECK(broken.errors.empty()); // an expression not closed costs only its word
+  REQUIRE_FALSE(broken.warnings.empty());
+  CHECK(broken.warnings[0].column == 7);
+  CHECK(broken.words.size() == 2);
   Block c = lex("G1 X1 (open");
   REQUIRE(c.warnings.size() == 1);
   CHECK(c.warnings[0].column == 7);
   Block d = lex("G1 X1 @");
   REQUIRE(d.warnings.size() == 1);
   CHECK(d.warnings[0].message.find('@') != std::string::npos);
+}
+
+TEST_CASE("an O inside a number, two decimal points and a bare letter are errors, not words") {
+  const Block o = lex("G1 Z-0.03 F1O8.", "haas");
+  REQUIRE(o.errors.size() == 1);
+  CHECK(o.errors[0].column == 13);
+  CHECK(o.errors[0].message.find("inside the number 'F1O8.'") != std::string::npos);
+  // An O word of its own is not a typo in a number: nccad's controller sets an output so.
+  CHECK(lex("M10 O6.0").errors.empty());
+  CHECK(lex("G1 F1 O8").errors.empty());
+  const Block points = lex("G1 X0..2");
+  REQUIRE(points.errors.size() == 1);
+  CHECK(points.errors[0].message.find("two decimal points in 'X0..2'") != std::string::npos);
+  CHECK(lex("G0 X1 Y-").errors.size() == 1);
+  // At the start of a block an O is a program number or an O-word, as before.
+  CHECK(lex("N10 O100", "fanuc").has_o);
+  CHECK(lex("N10 O100", "fanuc").errors.empty());
+  // Marlin's parser reads a letter alone as a flag and skips what follows a number.
+  CHECK(lex("G28 X Y", "reprap").errors.empty());
+  CHECK(lex("G1 X0..2 F1O8.", "reprap").errors.empty());
 }
 
 TEST_CASE("words of several letters, Sinumerik argument lists and X=value") {

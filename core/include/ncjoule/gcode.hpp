@@ -135,6 +135,11 @@ struct Dialect {
   // A program streamed line by line with no end code (Marlin has no M2/M30 of its own): ending
   // at the end of the file is a note, not a warning.
   bool end_code_optional = false;
+  // Marlin's parser: a letter alone is a flag ("G28 X Y"), what follows a number up to the next
+  // letter is skipped ("X0..2" is X0) and a letter it has no use for is a parameter nothing
+  // reads. Elsewhere such a word is a typo the control refuses (LinuxCNC: "Bad character 'o'
+  // used", "bad number format"; Fanuc and Haas alarm; grbl: error 2): an error.
+  bool lenient_words = false;
   // Peck drilling's small moves, a control parameter each family documents its own default for:
   // how far above the last peck G83 rapids back down after its retract to R, and how far G73
   // (high-speed peck) backs off to break the chip. rs274ngc: 0.010 in for both.

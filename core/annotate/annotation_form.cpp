@@ -53,9 +53,9 @@ constexpr std::array<Key, 11> kKeys{{{"T", Value::Duration},
 
 // The labels of the header's lines (SEAL and KEEP hold what strip needs; FILE is the key line of
 // files written by earlier versions).
-constexpr std::array<std::string_view, 13> kLabels{"SEAL",  "KEEP",   "TOTAL", "TIME", "STOCK",
-                                                   "SETUP", "ENERGY", "OP",    "WARN", "MACHINE",
-                                                   "CONST", "KEYS",   "FILE"};
+constexpr std::array<std::string_view, 14> kLabels{"SEAL",  "KEEP",    "TOTAL",  "TIME", "STOCK",
+                                                   "SETUP", "GUESSED", "ENERGY", "OP",   "MACHINE",
+                                                   "CONST", "KEYS",    "WARN",   "FILE"};
 
 // The key of kKeys[first..] that begins at text[i] with its '=', or kKeys.size().
 std::size_t key_at(std::string_view text, std::size_t i, std::size_t first) {

@@ -258,7 +258,10 @@ with tempfile.TemporaryDirectory() as tmp:
 # A comment holding a terminal's escape sequences (a window title, a colour) names an operation:
 # every text output shows it escaped (\x1b, \x07), never raw; JSON escapes it its own way.
 with tempfile.TemporaryDirectory() as tmp:
-    hostile = os.path.join(tmp, "esc\x1b[31m.ngc")
+    # The file name holds one too, but for Windows (NCJOULE_EXE: the tests under Wine), whose
+    # file names cannot hold control characters.
+    windows = bool(os.environ.get("NCJOULE_EXE"))
+    hostile = os.path.join(tmp, "esc.ngc" if windows else "esc\x1b[31m.ngc")
     with open(hostile, "wb") as f:
         f.write(b"G21 G90\n(OP \x1b]0;title\x07 \x1b[31mRED)\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\n"
                 b"G1 X10 F100\nM2\n")
@@ -269,8 +272,9 @@ with tempfile.TemporaryDirectory() as tmp:
     }
     for name, cmd in outputs.items():
         r = subprocess.run(cmd, capture_output=True)
-        check(r.returncode == 0 and b"\x1b" not in r.stdout and b"\x07" not in r.stdout
-              and b"\\x1b" in r.stdout,
+        # compare's table shows the file names, which hold the sequence only off Windows.
+        shown = b"\\x1b" in r.stdout or (windows and name == "compare")
+        check(r.returncode == 0 and b"\x1b" not in r.stdout and b"\x07" not in r.stdout and shown,
               f"{name}: control bytes escaped on stdout ({r.returncode}: {r.stdout[:300]!r} "
               f"{r.stderr[:200]!r})")
 

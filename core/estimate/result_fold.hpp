@@ -75,7 +75,8 @@ private:
   std::vector<bool> guessed_setups_; // whose stock is guessed, by setup
   StockGuessRange guess_;
   int last_overload_line_ = -1;
-  double plausible_peak_w_ = 0; // the peak, less the cutting of blocks over the rating under a guess
+  // The peak, less the cutting of blocks over the rating under a guess.
+  double plausible_peak_w_ = 0;
   // Blocks that ask the spindle for more than its rating (with a stock given or stated).
   std::size_t overloaded_ = 0;
   int first_overloaded_line_ = -1;

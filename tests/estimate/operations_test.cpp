@@ -375,8 +375,9 @@ TEST_CASE("NX's motion comments and a Fusion set-up note name no operation") {
                             "M30\n%\n");
   CHECK(names(flip) == std::vector<std::string>{"FACE TOP", "FACE BOTTOM", "DRILL"});
   // A comment above a tool change names its operation; one below it (a layer) does not.
-  const Estimate layer = run("G21\n(Pocket)\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nG0 Z5\n"
-                             "(Profiles)\nT2 M6\n(Profile: Layer 6)\nG0 X10 S10000 M3\n"
-                             "G1 Z-1 F300\nG1 X20\nM30\n");
+  const Estimate layer =
+      run("G21\n(Pocket)\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nG0 Z5\n"
+          "(Profiles)\nT2 M6\n(Profile: Layer 6)\nG0 X10 S10000 M3\n"
+          "G1 Z-1 F300\nG1 X20\nM30\n");
   CHECK(names(layer) == std::vector<std::string>{"Pocket", "Profiles"});
 }

@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ncjoule: predicts the time and energy of a CNC milling program before it runs"};
   app.require_subcommand(1);
   // One command line on every system: CLI11 would take "/x" for an option on Windows, and a path
-  // such as /work/part.nc (which Windows reads on the current drive) would be lost.
+  // such as /jobs/part.nc (which Windows reads on the current drive) would be lost.
   app.allow_windows_style_options(false);
   app.set_version_flag("--version", std::string("ncjoule ") + NCJOULE_VERSION);
   bool verbose = false;

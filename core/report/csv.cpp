@@ -6,6 +6,7 @@
 
 #include "ncjoule/diagnostic.hpp"
 #include "ncjoule/report.hpp"
+#include "stock_source_name.hpp"
 
 namespace ncjoule {
 namespace {
@@ -37,17 +38,7 @@ const char* stock_of_line(const Estimate& e, int line) {
   const SetupSummary* setup = nullptr;
   for (const SetupSummary& s : e.setups)
     if (s.first_line <= line || !setup) setup = &s;
-  switch (setup ? setup->stock_source : StockSource::None) {
-  case StockSource::Given:
-    return "given";
-  case StockSource::Program:
-    return "program";
-  case StockSource::Guessed:
-    return "guessed";
-  case StockSource::None:
-    break;
-  }
-  return "none";
+  return report_detail::stock_source_name(setup ? setup->stock_source : StockSource::None);
 }
 
 void row(std::string& out, const LineSummary& b, const Estimate& e) {

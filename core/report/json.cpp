@@ -4,25 +4,13 @@
 
 #include "json_writer.hpp"
 #include "ncjoule/report.hpp"
+#include "stock_source_name.hpp"
 
 namespace ncjoule {
 namespace {
 
-const char* stock_source_name(StockSource source) {
-  switch (source) {
-  case StockSource::Given:
-    return "given";
-  case StockSource::Program:
-    return "program";
-  case StockSource::Guessed:
-    return "guessed";
-  case StockSource::None:
-    break;
-  }
-  return "none";
-}
-
 using report_detail::JsonWriter;
+using report_detail::stock_source_name;
 
 const char* severity_name(Severity s) {
   switch (s) {

@@ -12,6 +12,8 @@ import sys
 import tempfile
 import zlib
 
+import headless_page
+
 NCJOULE = os.environ["NCJOULE"]
 ROOT = os.environ["NCJOULE_SOURCE_DIR"]
 PROGRAMS = os.path.join(ROOT, "samples/programs")
@@ -67,7 +69,7 @@ def png_pixels(path):
     return width, height, bpp, rows
 
 
-chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+chromium = headless_page.chromium()
 if not chromium:
     print("SKIP: chromium is not installed (scripts/setup.sh installs it); the HTML report was not checked in a browser")
     sys.exit(SKIP)
@@ -120,17 +122,8 @@ with tempfile.TemporaryDirectory() as tmp:
                        capture_output=True, text=True)
     check(r.returncode == 3 and "no-such-dir" in r.stderr, f"unwritable output: exit 3 ({r.returncode})")
 
-    base = [chromium, "--headless", "--no-sandbox", "--disable-gpu",
-            "--disable-background-networking", "--disable-component-update", "--disable-sync",
-            "--no-first-run", "--hide-scrollbars"]
-    url = "file://" + page
-    with tempfile.TemporaryDirectory() as profile:
-        r = subprocess.run(base + ["--user-data-dir=" + profile, "--enable-logging=stderr", "--v=0",
-                                   "--virtual-time-budget=5000", "--dump-dom", url],
-                           capture_output=True, text=True, timeout=180)
-    dom, log = r.stdout, r.stderr
-    check(r.returncode == 0 and "<svg" in dom, f"chromium loaded the page (exit {r.returncode})")
-    errors = [l for l in log.splitlines() if "Uncaught" in l or ("CONSOLE" in l and "rror" in l)]
+    status, dom, errors = headless_page.render(page, chromium)
+    check(status == 0 and "<svg" in dom, f"chromium loaded the page (exit {status})")
     check(not errors, f"no script errors in the console {errors[:3]}")
     charts = re.findall(r'<svg class="time-chart"', dom)
     ready = re.search(r'data-charts-ready="(\d+)"', dom)
@@ -165,8 +158,9 @@ with tempfile.TemporaryDirectory() as tmp:
 
     shot = os.path.join(tmp, "report.png")
     with tempfile.TemporaryDirectory() as profile:
-        r = subprocess.run(base + ["--user-data-dir=" + profile, "--screenshot=" + shot,
-                                   "--window-size=1280,1800", "--virtual-time-budget=5000", url],
+        r = subprocess.run([chromium, *headless_page.FLAGS, "--user-data-dir=" + profile,
+                            "--screenshot=" + shot, "--window-size=1280,1800",
+                            "--virtual-time-budget=5000", "file://" + page],
                            capture_output=True, text=True, timeout=180)
     check(os.path.exists(shot) and os.path.getsize(shot) > 20000,
           f"screenshot written ({os.path.getsize(shot) if os.path.exists(shot) else 0} bytes)")

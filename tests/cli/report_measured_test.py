@@ -11,10 +11,11 @@ import html as htmllib
 import json
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
+
+import headless_page
 
 NCJOULE = os.environ["NCJOULE"]
 SRC = os.environ["NCJOULE_SOURCE_DIR"]
@@ -143,21 +144,11 @@ with tempfile.TemporaryDirectory() as tmp:
     r = run("report", COVER, "-m", "hurco-vmx24", "--log", DEVICES, "-o", bad)
     check(r.returncode == 2 and not os.path.exists(bad), "a device file given as a log: exit 2, no page")
 
-    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
-    if not chromium:
+    if not headless_page.chromium():
         print("SKIP: chromium is not installed; the page was not rendered")
         sys.exit(1 if failures else SKIP)
-    base = [chromium, "--headless", "--no-sandbox", "--disable-gpu",
-            "--disable-background-networking", "--disable-component-update", "--disable-sync",
-            "--no-first-run", "--hide-scrollbars"]
-    with tempfile.TemporaryDirectory() as profile:
-        r = subprocess.run(base + ["--user-data-dir=" + profile, "--enable-logging=stderr", "--v=0",
-                                   "--virtual-time-budget=5000", "--dump-dom",
-                                   "file://" + pages["SHDR"]],
-                           capture_output=True, text=True, timeout=180)
-    dom, log = r.stdout, r.stderr
-    check(r.returncode == 0 and "<svg" in dom, f"chromium loaded the page (exit {r.returncode})")
-    errors = [l for l in log.splitlines() if "Uncaught" in l or ("CONSOLE" in l and "rror" in l)]
+    status, dom, errors = headless_page.render(pages["SHDR"])
+    check(status == 0 and "<svg" in dom, f"chromium loaded the page (exit {status})")
     check(not errors, f"no script errors in the console {errors[:3]}")
     charts = re.findall(r'<svg class="time-chart"', dom)
     ready = re.search(r'data-charts-ready="(\d+)"', dom)

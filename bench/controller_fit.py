@@ -11,7 +11,8 @@ machine's runs and checked with `ncjoule check-log` on a program the fit never s
   B. Hurco02: fitted on the box's OP1-OP3, checked on the box's OP5.
 
     bench/controller_fit.py --repo PATH/TO/smstestbed [--ncjoule build/plugin/ncjoule]
-                            [--base samples/machines/hurco-vmx24.toml] [--markdown] [--keep DIR]
+                            [--base samples/machines/hurco-vmx24.toml] [--case A|B]
+                            [--markdown] [--keep DIR]
 
 It prints the targets' table (the checked program's total and each operation: measured, the base
 profile's prediction, the calibrated profile's), the fitted keys beside the hand-chosen
@@ -177,6 +178,8 @@ def main(argv):
     ap.add_argument('--ncjoule', default=os.path.join(ROOT, 'build', 'plugin', 'ncjoule'))
     ap.add_argument('--base', default=os.path.join(ROOT, 'samples', 'machines', 'hurco-vmx24.toml'),
                     help='the base profile the fits start from (default: hurco-vmx24)')
+    ap.add_argument('--case', choices=['A', 'B'], action='append',
+                    help='run only this case (repeat for both; default: both)')
     ap.add_argument('--markdown', action='store_true')
     ap.add_argument('--keep', help='keep the extracted data and the calibrated profiles here')
     args = ap.parse_args(argv)
@@ -224,6 +227,8 @@ def main(argv):
               'ncjoule check-log PROGRAM --log ... -m PROFILE --json')
         results, keys, summaries = [], {}, {}
         for case, machine, fitted_on, programs, fit_logs, check_name, check_prog, check_logs in cases:
+            if args.case and case not in args.case:
+                continue
             if not programs or not fit_logs or not check_prog or not check_logs:
                 print('- case %s skipped: the repository copy lacks its programs or logs' % case)
                 continue
@@ -305,7 +310,7 @@ def main(argv):
 def read_profile_keys(path):
     """The timing keys the base profile writes, as written (key, value)."""
     keys, table = [], ''
-    wanted = re.compile(r'^(accel_\w+|rapid_\w+|transition_speed_ratio|settle_\w+|tool_change_\w+|'
+    wanted = re.compile(r'^(accel_\w+|arc_accel_\w+|rapid_\w+|transition_speed_ratio|settle_\w+|tool_change_\w+|'
                         r'optional_stop_\w+|program_end_\w+|coolant_on_\w+|spindle_ramp_\w+|spindle_waits)\s*=\s*([^#]+)')
     with open(path) as f:
         for line in f:

@@ -27,13 +27,26 @@ using timing_detail::PlanParameter;
 using timing_detail::select_keys;
 using timing_detail::TimingModel;
 
+// Whether the fitted arc acceleration (parameter j) holds any logged arc below what the axes
+// allow: planned with it raised to its bound (the axes' own), no stretch moves by a millisecond.
+bool arcs_held(const TimingModel& model, const std::vector<PlanParameter>& parameters,
+               const std::vector<double>& theta, std::size_t j) {
+  std::vector<double> free = theta;
+  free[j] = parameters[j].upper;
+  const std::vector<double> held = model.motion(parameters, theta);
+  const std::vector<double> unheld = model.motion(parameters, free);
+  for (std::size_t o = 0; o < held.size(); ++o)
+    if (std::abs(held[o] - unheld[o]) > 1e-3) return true;
+  return false;
+}
+
 std::vector<TimingKey> default_keys(const MachineProfile& base) {
   std::vector<TimingKey> keys;
   for (std::size_t i = 0; i < kTimingKeyCount; ++i) {
     const auto key = static_cast<TimingKey>(i);
-    if (key == TimingKey::TransitionRatio &&
+    if ((key == TimingKey::TransitionRatio || key == TimingKey::ArcAccel) &&
         base.kinematics.junction_rule == JunctionRule::LinuxCnc29)
-      continue; // that rule blends as LinuxCNC does, without a ratio
+      continue; // that rule blends and limits arcs as LinuxCNC does, without a ratio
     if (key == TimingKey::SpindleRamp && !base.kinematics.spindle_run_up.empty())
       continue; // a measured run-up curve times the spindle: nothing to fit
     keys.push_back(key);
@@ -193,6 +206,16 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
           base.kinematics.axes[std::size_t(k) - std::size_t(TimingKey::RapidX)];
       p.lower = std::max(p.lower, axis.max_feed_mm_s / axis.rapid_mm_s);
     }
+    if (k == TimingKey::ArcAccel) {
+      // Arcs are held to the in-plane axes' acceleration whatever this says: above it the key
+      // changes nothing. A control may hold small arcs far below it (a twentieth and more). At
+      // the base no arc feels it: its sensitivity is taken at 0.3 of it, and the fit starts there.
+      p.lower = 0.05;
+      p.start = 0.3;
+      const Kinematics& kin = base.kinematics;
+      p.upper = std::max(1.0, std::min(kin.axes[0].accel_mm_s2, kin.axes[1].accel_mm_s2) /
+                                  timing_key_value(base, k));
+    }
     each.push_back(p);
   }
   std::vector<double> initial_each;
@@ -202,13 +225,19 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
   std::vector<Eigen::VectorXd> each_column;
   for (std::size_t j = 0; j < each.size(); ++j) {
     std::vector<double> moved = initial_each;
+    std::vector<double> from_motion;
+    if (each[j].start >= 0) {
+      moved[j] = each[j].start;
+      from_motion = model.motion(each, moved);
+    }
+    const std::vector<double>& from = each[j].start >= 0 ? from_motion : base_motion;
     double h = each[j].step;
     if (moved[j] + h > each[j].upper) h = -h;
     moved[j] += h;
     const std::vector<double> m = model.motion(each, moved);
     Eigen::VectorXd c(n_obs);
     for (std::size_t o = 0; o < n_obs; ++o)
-      c[o] = (m[o] - base_motion[o]) / h / observations[o].sigma_s;
+      c[o] = (m[o] - from[o]) / h / observations[o].sigma_s;
     each_column.push_back(c);
   }
   // Before: the base profile's prediction.
@@ -267,7 +296,7 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
   group({TimingKey::AccelX, TimingKey::AccelY, TimingKey::AccelZ}, "acceleration");
   group({TimingKey::RapidX, TimingKey::RapidY, TimingKey::RapidZ}, "rapid rate");
   for (std::size_t j = 0; j < each.size(); ++j)
-    if (each[j].keys[0] == TimingKey::TransitionRatio) {
+    if (each[j].keys[0] == TimingKey::TransitionRatio || each[j].keys[0] == TimingKey::ArcAccel) {
       parameters.push_back(each[j]);
       parameter_columns.push_back(each_column[j]);
     }
@@ -329,7 +358,7 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
   // The fit.
   std::vector<double> theta;
   for (const PlanParameter& p : fitted_plan)
-    theta.push_back(p.initial);
+    theta.push_back(p.start >= 0 ? p.start : p.initial);
   std::vector<double> lin(linear.size());
   for (std::size_t k = 0; k < linear.size(); ++k)
     lin[k] = timing_key_value(base, linear[k]);
@@ -448,6 +477,10 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
   for (std::size_t j = 0; j < fitted_plan.size(); ++j)
     for (TimingKey k : fitted_plan[j].keys) {
       FittedTimingKey& f = entry(k);
+      if (k == TimingKey::ArcAccel && !arcs_held(model, fitted_plan, theta, j)) {
+        f.why = "no arc in these logs ran slower than the axes' acceleration allows";
+        continue;
+      }
       f.fitted = true;
       f.value = fitted_plan[j].factor ? f.base * theta[j] : theta[j];
       f.std_error = fitted_plan[j].factor ? f.base * se_theta[j] : se_theta[j];

@@ -1,5 +1,6 @@
 // The timing keys of a machine profile that logs can tell, how they are written in a profile and
 // how they are read from and written to a MachineProfile.
+#include <algorithm>
 #include <array>
 
 #include "ncjoule/calibrate_timing.hpp"
@@ -27,6 +28,7 @@ constexpr std::array<TimingKeyInfo, kTimingKeyCount> kKeys = {{
     {K::ProgramEnd, "kinematics.waits", "program_end", "s", 1, true},
     {K::CoolantOn, "kinematics.waits", "coolant_on", "s", 1, true},
     {K::SpindleRamp, "kinematics", "spindle_ramp", "s_per_1000rpm", 1, true},
+    {K::ArcAccel, "kinematics", "arc_accel", "m_s2", 1e-3, false},
 }};
 
 } // namespace
@@ -75,6 +77,8 @@ double timing_key_value(const MachineProfile& m, TimingKey key) {
     return k.waits.coolant_on_s;
   case K::SpindleRamp:
     return k.spindle_s_per_1000rpm;
+  case K::ArcAccel: // not given: the XY plane's, where arcs run
+    return k.arc_accel_mm_s2.value_or(std::min(k.axes[0].accel_mm_s2, k.axes[1].accel_mm_s2));
   }
   return 0;
 }
@@ -124,6 +128,9 @@ void set_timing_key(MachineProfile& m, TimingKey key, double value) {
     break;
   case K::SpindleRamp:
     k.spindle_s_per_1000rpm = value;
+    break;
+  case K::ArcAccel:
+    k.arc_accel_mm_s2 = value;
     break;
   }
 }

@@ -30,6 +30,10 @@ struct PlanParameter {
   std::vector<TimingKey> keys;
   bool factor = true;
   double initial = 1, lower = 0.2, upper = 5, step = 0.01;
+  // A key that only matters below its base value (a limit no move reaches there) shows no
+  // sensitivity at it: its sensitivity is taken at `start` instead, where moves feel it, and the
+  // solver starts there (below 0: at `initial`).
+  double start = -1;
   std::string label;
 };
 

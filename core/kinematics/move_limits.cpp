@@ -127,9 +127,12 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
     axis(first, in_plane);
     axis(second, in_plane);
     axis(normal, g.axial / m.length);
-    // Centripetal acceleration (v * in_plane)^2 / r within the slower in-plane axis.
+    // Centripetal acceleration (v * in_plane)^2 / r within the slower in-plane axis, and within
+    // what the control allows on arcs where the profile says so.
     if (in_plane > kNegligible && g.radius > 0) {
-      const double a_plane = std::min(k.axes[first].accel_mm_s2, k.axes[second].accel_mm_s2);
+      const double a_plane =
+          std::min({k.axes[first].accel_mm_s2, k.axes[second].accel_mm_s2,
+                    k.arc_accel_mm_s2.value_or(std::numeric_limits<double>::infinity())});
       caps.speed = std::min(caps.speed, std::sqrt(a_plane * g.radius) / in_plane);
     }
     const double phi0 = std::atan2(component(move.start, second) - move.centre_second,

@@ -93,6 +93,7 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
       t.fail("lookahead_blocks", "must be a whole number of blocks, 1 to 1000000");
     k.lookahead_blocks = static_cast<std::size_t>(*blocks);
   }
+  k.arc_accel_mm_s2 = t.optional_quantity("arc_accel", Dimension::Acceleration, Range::Positive);
   if (auto waits = t.optional_table("waits")) {
     read_source(*waits, "kinematics.waits", sources);
     auto wait = [&](const char* stem) {

@@ -108,10 +108,11 @@ inline std::string synthetic_run(const Estimate& e, double t0, double jitter, in
 
 // Evidence from runs of kSyntheticProgram planned on `truth`, compared with `machine`.
 inline LogEvidence synthetic_evidence(const MachineProfile& truth, const MachineProfile& machine,
-                                      int runs, double jitter, double rapid_override_pct = -1) {
+                                      int runs, double jitter, double rapid_override_pct = -1,
+                                      const char* program = kSyntheticProgram) {
   LogEvidence evidence;
   LoggedProgram p;
-  p.source = make_source("synthetic.nc", kSyntheticProgram);
+  p.source = make_source("synthetic.nc", program);
   p.outline = outline_program(p.source);
   p.options.simulate_removal = false;
   MachineProfile true_run = truth;

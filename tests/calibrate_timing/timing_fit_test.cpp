@@ -69,6 +69,84 @@ TEST_CASE("timing fit: the keys of the machine that made the logs come back") {
   CHECK(checks[0].predicted_s == doctest::Approx(checks[0].measured.median).epsilon(0.01));
 }
 
+// Helical bores as NIST's plate programs mill them (radius 0.0674 in at F110 in/min: 1.3 m/s^2
+// centripetal, under the axes' 2.5), between lines at the same feed.
+const char* kBoreProgram = R"(%
+O0002(BORES)
+N10 G20
+N20 G0 G17 G40 G49 G80 G90
+N30 T4 M6
+N40 G0 G90 G54 X.6795 Y-1.7205 S12000 M3
+N50 Z.25 M8
+N60 Z.1
+N70 G1 Z.01 F110.
+N80 G3 X.5498 Z.0025 I-.0674 J0.
+N90 X.6845 Z-.005 I.0673 J0.
+N100 X.5498 Z-.0125 I-.0674 J0.
+N110 X.6845 Z-.02 I.0673 J0.
+N120 X.5498 Z-.0275 I-.0674 J0.
+N130 X.6845 Z-.035 I.0673 J0.
+N140 X.5498 Z-.0425 I-.0674 J0.
+N150 X.6845 Z-.05 I.0673 J0.
+N160 G1 X1.6845
+N170 Y-1.2
+N180 X.6845
+N190 Y-1.7205
+N200 G3 X.5498 Z-.0575 I-.0674 J0.
+N210 X.6845 Z-.065 I.0673 J0.
+N220 X.5498 Z-.0725 I-.0674 J0.
+N230 X.6845 Z-.08 I.0673 J0.
+N240 X.5498 Z-.0875 I-.0674 J0.
+N250 X.6845 Z-.095 I.0673 J0.
+N260 G0 Z.25
+N270 X2. Y-1.
+N280 G1 Z-.05 F110.
+N290 X3.
+N300 Y0.
+N310 X2.
+N320 Y-1.
+N330 G0 Z.25
+N340 M5
+N350 G91 G28 Z0. M9
+N360 M30
+%
+)";
+
+TEST_CASE("timing fit: a control that holds small arcs slower than its axes' acceleration") {
+  const MachineProfile base = shipped_profile("hurco-vmx24");
+  MachineProfile truth = base;
+  truth.kinematics.arc_accel_mm_s2 = 700; // 0.7 m/s^2: the bores run at 34.3 mm/s, not 46.6
+  LogEvidence evidence = synthetic_evidence(truth, base, 3, 0.01, -1, kBoreProgram);
+  judge_runs(evidence, plan_all(evidence, base));
+  TimingFitOptions options;
+  options.min_stretch_s = 0;
+  const TimingFit fit = fit_timing(evidence, base, options);
+  const FittedTimingKey& arc = key_of(fit, TimingKey::ArcAccel);
+  CHECK(arc.base == doctest::Approx(2500)); // not given: the XY axes' acceleration
+  INFO(arc.why);
+  REQUIRE(arc.fitted);
+  CHECK(arc.value == doctest::Approx(700).epsilon(0.1));
+  // The lines at the same feed keep the axes' acceleration: the arcs' slowness is not spread
+  // over every move.
+  CHECK(key_of(fit, TimingKey::AccelX).value > 2000);
+  const auto checks = check_programs(evidence, plan_all(evidence, fit.machine));
+  REQUIRE(checks.size() == 1);
+  CHECK(checks[0].predicted_s == doctest::Approx(checks[0].measured.median).epsilon(0.01));
+}
+
+TEST_CASE("timing fit: arcs run as the axes allow leave the arc acceleration unset") {
+  const MachineProfile base = shipped_profile("hurco-vmx24");
+  LogEvidence evidence = synthetic_evidence(base, base, 3, 0.01, -1, kBoreProgram);
+  judge_runs(evidence, plan_all(evidence, base));
+  TimingFitOptions options;
+  options.min_stretch_s = 0;
+  const TimingFit fit = fit_timing(evidence, base, options);
+  const FittedTimingKey& arc = key_of(fit, TimingKey::ArcAccel);
+  CHECK_FALSE(arc.fitted);
+  CHECK(arc.why.find("no arc in these logs ran slower") != std::string::npos);
+  CHECK_FALSE(fit.machine.kinematics.arc_accel_mm_s2.has_value());
+}
+
 TEST_CASE("timing fit: with no usable run nothing is fitted, and it says so") {
   const MachineProfile base = shipped_profile("hurco-vmx24");
   LogEvidence evidence = synthetic_evidence(base, base, 1, 0);

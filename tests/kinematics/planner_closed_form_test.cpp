@@ -150,3 +150,19 @@ TEST_CASE("a feed too slow for a double's range is timed at the slowest speed, f
     CHECK(warned);
   }
 }
+
+TEST_CASE("a control's arc acceleration holds small arcs below the axes' centripetal limit") {
+  const double r = 1.712, feed = 110 * 25.4; // NIST's plate bores: 0.0674 in at F110 in/min
+  MachineProfile m = round_machine();
+  for (AxisLimits& a : m.kinematics.axes)
+    a.accel_mm_s2 = 2500; // the arc's own limit, sqrt(2500 r) = 65.4 mm/s, is above its F
+  const Timeline free_arc = plan({arc(at(r, 0), at(-r, 0), 0, 0, 1, feed)}, m);
+  CHECK(free_arc.commands[0].peak_speed_mm_s == doctest::Approx(feed / 60));
+  m.kinematics.arc_accel_mm_s2 = 700;
+  const Timeline held = plan({arc(at(r, 0), at(-r, 0), 0, 0, 1, feed)}, m);
+  CHECK(held.commands[0].peak_speed_mm_s == doctest::Approx(std::sqrt(700 * r)));
+  // Above the axes' acceleration the key changes nothing.
+  m.kinematics.arc_accel_mm_s2 = 1e5;
+  const Timeline above = plan({arc(at(r, 0), at(-r, 0), 0, 0, 1, 6000)}, m);
+  CHECK(above.commands[0].peak_speed_mm_s == doctest::Approx(std::sqrt(2500 * r)));
+}

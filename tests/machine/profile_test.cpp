@@ -325,7 +325,7 @@ TEST_CASE("a control's timing: run-up curve, tool-change sequence, peck distance
   const std::string timed =
       with_line("spindle_ramp", "spindle_run_up_rpm_s = [[3000, 0], [7500, 3.0], [12000, 7]]\n"
                                 "tool_change_first_extra_s = 2\ntool_change_same_tool_s = 2.4\n"
-                                "tool_change_spindle_stop_s = 1.2");
+                                "tool_change_spindle_stop_s = 1.2\narc_accel_m_s2 = 0.7");
   const MachineProfile m = parse_profile(timed + "[setup]\npeck_clearance_in = 0.05\n"
                                                  "chip_break_retract_mm = 0.5\n",
                                          "t.toml");
@@ -336,6 +336,11 @@ TEST_CASE("a control's timing: run-up curve, tool-change sequence, peck distance
   CHECK(m.kinematics.tool_change_same_tool_s == 2.4);
   CHECK(m.kinematics.tool_change_spindle_stop_s == 1.2);
   CHECK(plain.kinematics.tool_change_spindle_stop_s == 0);
+  CHECK(*m.kinematics.arc_accel_mm_s2 == doctest::Approx(700));
+  CHECK_FALSE(plain.kinematics.arc_accel_mm_s2);
+  check_names_file_and_key(
+      refusal(with_line("tool_change_s", "tool_change_s = 6.0\narc_accel_m_s2 = 0")),
+      "kinematics.arc_accel_m_s2");
   CHECK(*m.setup.peck_clearance_mm == doctest::Approx(1.27));
   CHECK(*m.setup.chip_break_retract_mm == doctest::Approx(0.5));
   // A curve that falls, or a run-down without a run-up, is refused at its key.

@@ -164,8 +164,9 @@ enum class TimingKey {
   ProgramEnd,
   CoolantOn,
   SpindleRamp,
+  ArcAccel,
 };
-inline constexpr std::size_t kTimingKeyCount = 17;
+inline constexpr std::size_t kTimingKeyCount = 18;
 
 struct TimingKeyInfo {
   TimingKey key;

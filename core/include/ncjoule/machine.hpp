@@ -83,6 +83,11 @@ struct Kinematics {
   // short blocks at high feed. 0: the whole path (ncjoule's planner sees all of it). Rules
   // Tolerance and NextFeed only.
   std::size_t lookahead_blocks = 0;
+  // The centripetal acceleration a control allows on arcs (mm/s^2): it holds an arc of radius r
+  // to sqrt(arc_accel * r), below what the axes' acceleration allows, as Fanuc's "allowable
+  // acceleration in circular interpolation" does. Small-radius arcs (helical bores) then run
+  // slower than F. Not given: the slower in-plane axis's acceleration.
+  std::optional<double> arc_accel_mm_s2;
   // What a control spends on codes that move nothing, beyond what ncjoule times for them
   // ([kinematics.waits], measured from a machine's logs): an M1 with the optional stop off
   // still stops and checks, M30 rewinds and resets, coolant on may wait for pressure. 0: none.

@@ -91,7 +91,11 @@ public:
 
   // The batch: steps binned by the tiles their footprints touch; every tile, in parallel,
   // applies its steps in order; a step's volume sums its tiles in tile order, as remove_step
-  // does, so the result is the same bit for bit.
+  // does, so the result is the same bit for bit. The batch runs in chunks of consecutive steps
+  // that together touch at most kMaxTileEntries tiles: a tool far wider than the grid's spacing
+  // (each of its steps touches thousands of tiles) would otherwise hold the bins of a whole
+  // batch at once, hundreds of MiB beside the stock model. Chunks run in order and a step lies
+  // in one chunk, so every tile still sees its steps in order: the same numbers.
   void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes,
                     std::vector<double>* cut_tops) override {
     const std::size_t n = steps.size();
@@ -102,13 +106,47 @@ public:
     std::vector<FootprintRange> ranges;
     swept.reserve(n);
     ranges.reserve(n);
-    const int across = tiles_across(grid_);
-    tile_steps_.resize(tile_count(grid_));
-    std::vector<std::uint32_t> touched; // tiles with steps, in tile order
     for (std::size_t k = 0; k < n; ++k) {
       swept.emplace_back(*steps[k].tool, steps[k].from, steps[k].to);
       ranges.push_back(footprint_range(grid_, swept.back()));
-      const FootprintRange& f = ranges.back();
+    }
+    tile_steps_.resize(tile_count(grid_));
+    std::vector<double> length(n, 0.0);
+    for (std::size_t begin = 0; begin < n;) {
+      std::size_t end = begin, entries = 0;
+      for (; end < n; ++end) {
+        const FootprintRange& f = ranges[end];
+        const std::size_t touched =
+            f.empty() ? 0 : std::size_t(f.ti1 - f.ti0 + 1) * std::size_t(f.tj1 - f.tj0 + 1);
+        if (end > begin && entries + touched > kMaxTileEntries) break;
+        entries += touched;
+      }
+      remove_chunk(begin, end, swept, ranges, length, cut_tops);
+      begin = end;
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      volumes[k] = length[k] * grid_.dx * grid_.dy;
+    stats_.steps += n;
+  }
+
+private:
+  struct TileStep {
+    std::uint32_t step = 0;
+    TileResult result;
+  };
+
+  // At most this many (step, tile) bins at once in remove_steps: 40 bytes each, 20 MiB.
+  static constexpr std::size_t kMaxTileEntries = std::size_t(1) << 19;
+
+  // Steps [begin, end) of a batch: binned by tile, every tile's steps applied in order (tiles in
+  // parallel), then each step's length summed over its tiles in tile order into `length`.
+  void remove_chunk(std::size_t begin, std::size_t end, const std::vector<SweptStep>& swept,
+                    const std::vector<FootprintRange>& ranges, std::vector<double>& length,
+                    std::vector<double>* cut_tops) {
+    const int across = tiles_across(grid_);
+    std::vector<std::uint32_t> touched; // tiles with steps, in tile order
+    for (std::size_t k = begin; k < end; ++k) {
+      const FootprintRange& f = ranges[k];
       if (f.empty()) continue;
       for (int tj = f.tj0; tj <= f.tj1; ++tj)
         for (int ti = f.ti0; ti <= f.ti1; ++ti) {
@@ -141,7 +179,6 @@ public:
         },
         tbb::simple_partitioner());
     // Tile order, step by step: the order remove_step adds them in.
-    std::vector<double> length(n, 0.0);
     for (std::uint32_t tile : touched) {
       for (const TileStep& ts : tile_steps_[tile]) {
         length[ts.step] += ts.result.volume_mm3;
@@ -151,16 +188,7 @@ public:
       }
       tile_steps_[tile].clear();
     }
-    for (std::size_t k = 0; k < n; ++k)
-      volumes[k] = length[k] * grid_.dx * grid_.dy;
-    stats_.steps += n;
   }
-
-private:
-  struct TileStep {
-    std::uint32_t step = 0;
-    TileResult result;
-  };
 
   // Cuts column c down to the step's envelope.
   void cut_column(const SweptStep& step, double zlow, std::size_t c, double x, double y,

@@ -138,6 +138,59 @@ private:
   // At most this many (step, tile) bins at once in remove_steps: 40 bytes each, 20 MiB.
   static constexpr std::size_t kMaxTileEntries = std::size_t(1) << 19;
 
+  // The first and last column a step covers on each grid row of one row of tiles (first > last
+  // where it covers none), as visit_tile_columns works them out from SweptStep::row_span; made
+  // on a step's first tile in the row that has material, then read by its other tiles there.
+  class RowSpans {
+  public:
+    RowSpans(std::size_t begin, std::size_t end) : begin_(begin), slot_(end - begin, -1) {}
+    const int* of(std::size_t k, const SweptStep& step, const FootprintRange& f, int tj,
+                  const GridFrame& grid) {
+      std::int64_t& slot = slot_[k - begin_];
+      if (slot < 0) {
+        slot = std::int64_t(columns_.size());
+        const int ja = std::max(f.j0, tj * kTileColumns);
+        const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
+        for (int j = ja; j <= jb; ++j) {
+          double xlo, xhi;
+          if (step.row_span(grid.column_y(j), xlo, xhi)) {
+            columns_.push_back(first_column_index(xlo, grid.x0, grid.dx));
+            columns_.push_back(last_column_index(xhi, grid.x0, grid.dx));
+          } else {
+            columns_.push_back(1), columns_.push_back(0);
+          }
+        }
+      }
+      return columns_.data() + slot;
+    }
+
+  private:
+    std::size_t begin_;
+    std::vector<std::int64_t> slot_; // by step: where its rows start in columns_, or -1
+    std::vector<int> columns_;       // first and last column of each row, row after row
+  };
+
+  // The footprint's columns in tile (ti, tj), row by row, cut to the step's envelope: as
+  // visit_tile_columns (tile_sum.hpp) visits them, with each row's columns from `rows` (the
+  // rows from max(f.j0, tj * kTileColumns) on).
+  void visit_tile(const SweptStep& step, const FootprintRange& f, const int* rows, int ti, int tj,
+                  double zlow, TileResult& r) {
+    const int ia = std::max(f.i0, ti * kTileColumns);
+    const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
+    const int ja = std::max(f.j0, tj * kTileColumns);
+    const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
+    for (int j = ja; j <= jb; ++j, rows += 2) {
+      const int a = std::max(ia, rows[0]);
+      const int b = std::min(ib, rows[1]);
+      if (a > b) continue;
+      r.columns_visited += std::uint64_t(b - a + 1);
+      const double y = grid_.column_y(j);
+      const std::size_t row = std::size_t(j) * std::size_t(grid_.nx);
+      for (int i = a; i <= b; ++i)
+        cut_column(step, zlow, row + std::size_t(i), grid_.column_x(i), y, r);
+    }
+  }
+
   // Steps [begin, end) of a batch: binned by tile, every tile's steps applied in order (tiles in
   // parallel), then each step's length summed over its tiles in tile order into `length`.
   void remove_chunk(std::size_t begin, std::size_t end, const std::vector<SweptStep>& swept,
@@ -156,26 +209,34 @@ private:
         }
     }
     std::sort(touched.begin(), touched.end());
-    auto run_tile = [&](std::size_t tile) {
-      const int ti = int(tile % std::size_t(across)), tj = int(tile / std::size_t(across));
-      for (TileStep& ts : tile_steps_[tile]) {
-        const SweptStep& step = swept[ts.step];
-        const double zlow = step.lowest_tip_z();
-        const bool skip = tile_top_[tile] <= zlow;
-        visit_tile_columns(
-            grid_, step, ranges[ts.step], ti, tj, skip,
-            [&](std::size_t c, int, int, double x, double y, TileResult& acc) {
-              cut_column(step, zlow, c, x, y, acc);
-            },
-            ts.result);
-        if (!skip && ts.result.volume_mm3 > 0) refresh_tile_top(tile);
+    // Tiles in parallel by rows of tiles: a step's footprint usually spans several tiles of a
+    // row, and the columns a step covers on a row of the grid (SweptStep::row_span, the kernel's
+    // largest cost) are the same in each, so one task works them out once for its row of tiles.
+    std::vector<std::size_t> row_starts; // where each row of tiles begins in `touched`
+    for (std::size_t t = 0; t < touched.size(); ++t)
+      if (t == 0 || touched[t] / std::size_t(across) != touched[t - 1] / std::size_t(across))
+        row_starts.push_back(t);
+    row_starts.push_back(touched.size());
+    auto run_row = [&](std::size_t first, std::size_t last) {
+      RowSpans spans(begin, end);
+      for (std::size_t t = first; t < last; ++t) {
+        const std::size_t tile = touched[t];
+        const int ti = int(tile % std::size_t(across)), tj = int(tile / std::size_t(across));
+        for (TileStep& ts : tile_steps_[tile]) {
+          const SweptStep& step = swept[ts.step];
+          const double zlow = step.lowest_tip_z();
+          if (tile_top_[tile] <= zlow) continue; // no material above the tool in this tile
+          visit_tile(step, ranges[ts.step], spans.of(ts.step, step, ranges[ts.step], tj, grid_), ti,
+                     tj, zlow, ts.result);
+          if (ts.result.volume_mm3 > 0) refresh_tile_top(tile);
+        }
       }
     };
     tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, touched.size(), 1),
+        tbb::blocked_range<std::size_t>(0, row_starts.size() - 1, 1),
         [&](const tbb::blocked_range<std::size_t>& range) {
-          for (std::size_t t = range.begin(); t != range.end(); ++t)
-            run_tile(touched[t]);
+          for (std::size_t r = range.begin(); r != range.end(); ++r)
+            run_row(row_starts[r], row_starts[r + 1]);
         },
         tbb::simple_partitioner());
     // Tile order, step by step: the order remove_step adds them in.

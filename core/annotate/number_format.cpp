@@ -4,10 +4,33 @@
 #include "ncjoule/fixed_text.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 namespace ncjoule::annotation {
+namespace {
+
+// "%dm%02.0fs" (no hours) or "%.0fh%02dm%02.0fs" as printf writes them for whole hours below
+// 1e9, minutes and seconds 0..59.
+std::string clock_text(long hours, int minutes, int seconds) {
+  char text[32];
+  char* p = text;
+  auto two = [&](int v) { *p++ = char('0' + v / 10), *p++ = char('0' + v % 10); };
+  if (hours > 0) {
+    p = std::to_chars(p, text + 16, hours).ptr;
+    *p++ = 'h';
+    two(minutes);
+  } else {
+    p = std::to_chars(p, text + 16, minutes).ptr;
+  }
+  *p++ = 'm';
+  two(seconds);
+  *p++ = 's';
+  return std::string(text, p);
+}
+
+} // namespace
 
 std::string format_significant(double value, int digits, int max_decimals) {
   if (!std::isfinite(value)) return "0";
@@ -39,6 +62,12 @@ std::string format_duration(double seconds) {
   if (seconds < 59.95) return format_significant(seconds, 3, 3) + "s";
   const ClockParts p = split_duration(seconds, 1);
   if (p.hours >= 1e9) return huge_hours(p.hours) + "h";
+  // Whole hours, minutes and seconds (a 1 s step): written without printf, as it writes them,
+  // since the cumulative time of nearly every block of a long program takes this form.
+  if (p.seconds >= 0 && p.seconds < 60 && p.seconds == std::floor(p.seconds) &&
+      !std::signbit(p.seconds) && p.hours >= 0 && p.hours == std::floor(p.hours) &&
+      !std::signbit(p.hours) && p.minutes >= 0 && p.minutes < 60)
+    return clock_text(static_cast<long>(p.hours), p.minutes, static_cast<int>(p.seconds));
   char text[64];
   if (p.hours == 0)
     std::snprintf(text, sizeof text, "%dm%02.0fs", p.minutes, p.seconds);

@@ -91,7 +91,11 @@ public:
 
   // The batch: steps binned by the tiles their footprints touch; every tile, in parallel,
   // applies its steps in order; a step's volume sums its tiles in tile order, as remove_step
-  // does, so the result is the same bit for bit.
+  // does, so the result is the same bit for bit. The batch runs in chunks of consecutive steps
+  // that together touch at most kMaxTileEntries tiles: a tool far wider than the grid's spacing
+  // (each of its steps touches thousands of tiles) would otherwise hold the bins of a whole
+  // batch at once, hundreds of MiB beside the stock model. Chunks run in order and a step lies
+  // in one chunk, so every tile still sees its steps in order: the same numbers.
   void remove_steps(const std::vector<RemovalStep>& steps, std::vector<double>& volumes,
                     std::vector<double>* cut_tops) override {
     const std::size_t n = steps.size();
@@ -102,54 +106,23 @@ public:
     std::vector<FootprintRange> ranges;
     swept.reserve(n);
     ranges.reserve(n);
-    const int across = tiles_across(grid_);
-    tile_steps_.resize(tile_count(grid_));
-    std::vector<std::uint32_t> touched; // tiles with steps, in tile order
     for (std::size_t k = 0; k < n; ++k) {
       swept.emplace_back(*steps[k].tool, steps[k].from, steps[k].to);
       ranges.push_back(footprint_range(grid_, swept.back()));
-      const FootprintRange& f = ranges.back();
-      if (f.empty()) continue;
-      for (int tj = f.tj0; tj <= f.tj1; ++tj)
-        for (int ti = f.ti0; ti <= f.ti1; ++ti) {
-          const std::size_t tile = std::size_t(tj) * std::size_t(across) + std::size_t(ti);
-          if (tile_steps_[tile].empty()) touched.push_back(std::uint32_t(tile));
-          tile_steps_[tile].push_back({std::uint32_t(k), {}});
-        }
     }
-    std::sort(touched.begin(), touched.end());
-    auto run_tile = [&](std::size_t tile) {
-      const int ti = int(tile % std::size_t(across)), tj = int(tile / std::size_t(across));
-      for (TileStep& ts : tile_steps_[tile]) {
-        const SweptStep& step = swept[ts.step];
-        const double zlow = step.lowest_tip_z();
-        const bool skip = tile_top_[tile] <= zlow;
-        visit_tile_columns(
-            grid_, step, ranges[ts.step], ti, tj, skip,
-            [&](std::size_t c, int, int, double x, double y, TileResult& acc) {
-              cut_column(step, zlow, c, x, y, acc);
-            },
-            ts.result);
-        if (!skip && ts.result.volume_mm3 > 0) refresh_tile_top(tile);
-      }
-    };
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, touched.size(), 1),
-        [&](const tbb::blocked_range<std::size_t>& range) {
-          for (std::size_t t = range.begin(); t != range.end(); ++t)
-            run_tile(touched[t]);
-        },
-        tbb::simple_partitioner());
-    // Tile order, step by step: the order remove_step adds them in.
+    tile_steps_.resize(tile_count(grid_));
     std::vector<double> length(n, 0.0);
-    for (std::uint32_t tile : touched) {
-      for (const TileStep& ts : tile_steps_[tile]) {
-        length[ts.step] += ts.result.volume_mm3;
-        if (cut_tops) (*cut_tops)[ts.step] = std::max((*cut_tops)[ts.step], ts.result.cut_top_mm);
-        stats_.columns_visited += ts.result.columns_visited;
-        stats_.cells_tested += ts.result.cells_tested;
+    for (std::size_t begin = 0; begin < n;) {
+      std::size_t end = begin, entries = 0;
+      for (; end < n; ++end) {
+        const FootprintRange& f = ranges[end];
+        const std::size_t touched =
+            f.empty() ? 0 : std::size_t(f.ti1 - f.ti0 + 1) * std::size_t(f.tj1 - f.tj0 + 1);
+        if (end > begin && entries + touched > kMaxTileEntries) break;
+        entries += touched;
       }
-      tile_steps_[tile].clear();
+      remove_chunk(begin, end, swept, ranges, length, cut_tops);
+      begin = end;
     }
     for (std::size_t k = 0; k < n; ++k)
       volumes[k] = length[k] * grid_.dx * grid_.dy;
@@ -161,6 +134,122 @@ private:
     std::uint32_t step = 0;
     TileResult result;
   };
+
+  // At most this many (step, tile) bins at once in remove_steps: 40 bytes each, 20 MiB.
+  static constexpr std::size_t kMaxTileEntries = std::size_t(1) << 19;
+
+  // The first and last column a step covers on each grid row of one row of tiles (first > last
+  // where it covers none), as visit_tile_columns works them out from SweptStep::row_span; made
+  // on a step's first tile in the row that has material, then read by its other tiles there.
+  class RowSpans {
+  public:
+    RowSpans(std::size_t begin, std::size_t end) : begin_(begin), slot_(end - begin, -1) {}
+    const int* of(std::size_t k, const SweptStep& step, const FootprintRange& f, int tj,
+                  const GridFrame& grid) {
+      std::int64_t& slot = slot_[k - begin_];
+      if (slot < 0) {
+        slot = std::int64_t(columns_.size());
+        const int ja = std::max(f.j0, tj * kTileColumns);
+        const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
+        for (int j = ja; j <= jb; ++j) {
+          double xlo, xhi;
+          if (step.row_span(grid.column_y(j), xlo, xhi)) {
+            columns_.push_back(first_column_index(xlo, grid.x0, grid.dx));
+            columns_.push_back(last_column_index(xhi, grid.x0, grid.dx));
+          } else {
+            columns_.push_back(1), columns_.push_back(0);
+          }
+        }
+      }
+      return columns_.data() + slot;
+    }
+
+  private:
+    std::size_t begin_;
+    std::vector<std::int64_t> slot_; // by step: where its rows start in columns_, or -1
+    std::vector<int> columns_;       // first and last column of each row, row after row
+  };
+
+  // The footprint's columns in tile (ti, tj), row by row, cut to the step's envelope: as
+  // visit_tile_columns (tile_sum.hpp) visits them, with each row's columns from `rows` (the
+  // rows from max(f.j0, tj * kTileColumns) on).
+  void visit_tile(const SweptStep& step, const FootprintRange& f, const int* rows, int ti, int tj,
+                  double zlow, TileResult& r) {
+    const int ia = std::max(f.i0, ti * kTileColumns);
+    const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
+    const int ja = std::max(f.j0, tj * kTileColumns);
+    const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
+    for (int j = ja; j <= jb; ++j, rows += 2) {
+      const int a = std::max(ia, rows[0]);
+      const int b = std::min(ib, rows[1]);
+      if (a > b) continue;
+      r.columns_visited += std::uint64_t(b - a + 1);
+      const double y = grid_.column_y(j);
+      const std::size_t row = std::size_t(j) * std::size_t(grid_.nx);
+      for (int i = a; i <= b; ++i)
+        cut_column(step, zlow, row + std::size_t(i), grid_.column_x(i), y, r);
+    }
+  }
+
+  // Steps [begin, end) of a batch: binned by tile, every tile's steps applied in order (tiles in
+  // parallel), then each step's length summed over its tiles in tile order into `length`.
+  void remove_chunk(std::size_t begin, std::size_t end, const std::vector<SweptStep>& swept,
+                    const std::vector<FootprintRange>& ranges, std::vector<double>& length,
+                    std::vector<double>* cut_tops) {
+    const int across = tiles_across(grid_);
+    std::vector<std::uint32_t> touched; // tiles with steps, in tile order
+    for (std::size_t k = begin; k < end; ++k) {
+      const FootprintRange& f = ranges[k];
+      if (f.empty()) continue;
+      for (int tj = f.tj0; tj <= f.tj1; ++tj)
+        for (int ti = f.ti0; ti <= f.ti1; ++ti) {
+          const std::size_t tile = std::size_t(tj) * std::size_t(across) + std::size_t(ti);
+          if (tile_steps_[tile].empty()) touched.push_back(std::uint32_t(tile));
+          tile_steps_[tile].push_back({std::uint32_t(k), {}});
+        }
+    }
+    std::sort(touched.begin(), touched.end());
+    // Tiles in parallel by rows of tiles: a step's footprint usually spans several tiles of a
+    // row, and the columns a step covers on a row of the grid (SweptStep::row_span, the kernel's
+    // largest cost) are the same in each, so one task works them out once for its row of tiles.
+    std::vector<std::size_t> row_starts; // where each row of tiles begins in `touched`
+    for (std::size_t t = 0; t < touched.size(); ++t)
+      if (t == 0 || touched[t] / std::size_t(across) != touched[t - 1] / std::size_t(across))
+        row_starts.push_back(t);
+    row_starts.push_back(touched.size());
+    auto run_row = [&](std::size_t first, std::size_t last) {
+      RowSpans spans(begin, end);
+      for (std::size_t t = first; t < last; ++t) {
+        const std::size_t tile = touched[t];
+        const int ti = int(tile % std::size_t(across)), tj = int(tile / std::size_t(across));
+        for (TileStep& ts : tile_steps_[tile]) {
+          const SweptStep& step = swept[ts.step];
+          const double zlow = step.lowest_tip_z();
+          if (tile_top_[tile] <= zlow) continue; // no material above the tool in this tile
+          visit_tile(step, ranges[ts.step], spans.of(ts.step, step, ranges[ts.step], tj, grid_), ti,
+                     tj, zlow, ts.result);
+          if (ts.result.volume_mm3 > 0) refresh_tile_top(tile);
+        }
+      }
+    };
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, row_starts.size() - 1, 1),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+          for (std::size_t r = range.begin(); r != range.end(); ++r)
+            run_row(row_starts[r], row_starts[r + 1]);
+        },
+        tbb::simple_partitioner());
+    // Tile order, step by step: the order remove_step adds them in.
+    for (std::uint32_t tile : touched) {
+      for (const TileStep& ts : tile_steps_[tile]) {
+        length[ts.step] += ts.result.volume_mm3;
+        if (cut_tops) (*cut_tops)[ts.step] = std::max((*cut_tops)[ts.step], ts.result.cut_top_mm);
+        stats_.columns_visited += ts.result.columns_visited;
+        stats_.cells_tested += ts.result.cells_tested;
+      }
+      tile_steps_[tile].clear();
+    }
+  }
 
   // Cuts column c down to the step's envelope.
   void cut_column(const SweptStep& step, double zlow, std::size_t c, double x, double y,

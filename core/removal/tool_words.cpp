@@ -12,6 +12,19 @@ bool has(std::string_view text, std::string_view word) {
   return text.find(word) != std::string_view::npos;
 }
 
+// Tools made by their point: spot drills, countersinks, chamfer mills.
+bool names_point_angle(std::string_view t) {
+  return has(t, "SPOT") || has(t, "COUNTER SINK") || has(t, "COUNTERSINK") || has(t, "CSINK") ||
+         has(t, "CHAMFER");
+}
+
+// The included angles such tools are sold with (degrees).
+bool is_standard_point_angle(double v) {
+  for (const double angle : {60.0, 82.0, 90.0, 100.0, 110.0, 118.0, 120.0, 135.0, 140.0, 142.0})
+    if (v == angle) return true;
+  return false;
+}
+
 } // namespace
 
 std::optional<ShapeGuess> guess_shape(std::string_view t) {
@@ -68,6 +81,9 @@ std::optional<double> size_in_description(std::string_view t, bool inch) {
       v = std::strtod(m[1].str().c_str(), nullptr) / den;
     } else {
       v = std::strtod(m[3].str().c_str(), nullptr);
+      // "90 SPOT DRILL", "82 COUNTERSINK": the bare number of a tool named by its point is its
+      // point angle, not a 90 mm (or 90 inch) diameter no such tool has.
+      if (names_point_angle(t) && is_standard_point_angle(v)) return std::nullopt;
     }
     return inch ? v * 25.4 : v;
   }
@@ -79,6 +95,11 @@ std::optional<double> angle_in_description(std::string_view t) {
   std::cmatch m;
   if (std::regex_search(t.data(), t.data() + t.size(), m, angle))
     return std::strtod(m[1].str().c_str(), nullptr);
+  // "82 COUNTERSINK": the leading bare number size_in_description leaves as an angle.
+  static const std::regex leading(R"(^\s*(\d+(?:\.\d*)?)(?:\s|$))");
+  if (names_point_angle(t) && std::regex_search(t.data(), t.data() + t.size(), m, leading))
+    if (const double v = std::strtod(m[1].str().c_str(), nullptr); is_standard_point_angle(v))
+      return v;
   return std::nullopt;
 }
 

@@ -1,13 +1,17 @@
 // The compact formats of annotation fields.
 #include <doctest/doctest.h>
 
+#include "ncjoule/duration.hpp"
 #include "number_format.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 using namespace ncjoule::annotation;
+using ncjoule::ClockParts;
+using ncjoule::split_duration;
 
 TEST_CASE("significant digits without exponents or trailing zeros") {
   CHECK(format_significant(34.5, 3, 3) == "34.5");
@@ -90,4 +94,34 @@ TEST_CASE("every finite value gives digits, a point and its unit only") {
   }
   CHECK(plain(format_si(std::numeric_limits<double>::max(), "J"), "J"));
   CHECK(plain_duration(format_duration(std::numeric_limits<double>::max())));
+}
+
+TEST_CASE("durations of a minute and more are written as printf wrote them") {
+  // The former "%dm%02.0fs" / "%.0fh%02dm%02.0fs" of split_duration's parts, against the text
+  // written without printf: every 0.37 s to 56 hours (half seconds and minute and hour turns
+  // among them), then larger durations up to the hours' limit.
+  auto by_printf = [](double seconds) {
+    const ClockParts p = split_duration(seconds, 1);
+    char text[64];
+    if (p.hours == 0)
+      std::snprintf(text, sizeof text, "%dm%02.0fs", p.minutes, p.seconds);
+    else
+      std::snprintf(text, sizeof text, "%.0fh%02dm%02.0fs", p.hours, p.minutes, p.seconds);
+    return std::string(text);
+  };
+  std::size_t checked = 0, same = 0;
+  auto check = [&](double seconds) {
+    ++checked;
+    same += format_duration(seconds) == by_printf(seconds);
+  };
+  for (double s = 59.95; s < 200'000; s += 0.37)
+    check(s);
+  for (double s : {59.95, 60.0, 119.5, 3599.5, 3600.0, 86399.5, 1e6 + 0.5, 3.6e12 - 0.6})
+    check(s);
+  for (double s = 1e5; s < 3.5e12; s *= 1.37)
+    check(s);
+  CHECK(checked > 500'000);
+  CHECK(same == checked);
+  CHECK(format_duration(3600) == "1h00m00s");
+  CHECK(format_duration(60) == "1m00s");
 }

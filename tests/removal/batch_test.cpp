@@ -3,6 +3,7 @@
 // one, bit for bit, whatever the number of threads.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <random>
 
 #include <tbb/global_control.h>
@@ -84,5 +85,37 @@ TEST_CASE("batched removal equals removal step by step, bit for bit, for any thr
       CHECK(identical);
       CHECK(left == doctest::Approx(60 * 60 * 3 - total).epsilon(1e-9));
     }
+  }
+}
+
+TEST_CASE("a batch of a tool far wider than the grid runs in chunks, with the same volumes") {
+  // A 40 mm cutter on a 0.06 mm grid: each step's footprint spans about 21 x 21 tiles, so the
+  // 2,000 steps of one batch touch about 880,000 (step, tile) bins, more than one chunk of
+  // remove_steps holds. Every 100th step cuts, each a little deeper and further along X, so that
+  // cuts on both sides of a chunk's end overlap; the others pass over the stock (their tiles are
+  // skipped, which keeps the test fast).
+  const Tool wide = flat_end_mill(1, 40);
+  std::vector<RemovalStep> steps;
+  for (int k = 0; k < 2000; ++k) {
+    const double x = 20 + 0.01 * k;
+    const double z = k % 100 == 0 ? -0.1 * (1 + k / 100) : 1;
+    steps.push_back({&wide, {x, 30, z}, {x + 1, 30.5, z}});
+  }
+  const Box3 box{0, 0, -3, 60, 60, 0};
+  const auto stock = make_box_stock(box, "test box");
+  const GridFrame grid = make_grid(box, 0.06); // 1000 x 1000 columns, 32 x 32 tiles
+  const std::vector<double> reference = one_by_one(*stock, grid, steps);
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    CAPTURE(threads);
+    const std::vector<double> v = batched(*stock, grid, steps, steps.size());
+    REQUIRE(v.size() == reference.size());
+    std::size_t cutting = 0, identical = 0;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      cutting += reference[k] > 0;
+      identical += v[k] == reference[k]; // exact, not approximate
+    }
+    CHECK(cutting == 20); // every cut removes material
+    CHECK(identical == v.size());
   }
 }

@@ -417,3 +417,19 @@ TEST_CASE("BlenderCAM / Fabex: (Tool: D = 3.0 mm  type END flutes 2)") {
   CHECK(diags[0].severity == Severity::Note);
   CHECK(diags[0].message.find("CYLCONE") != std::string::npos);
 }
+
+TEST_CASE("a spot drill's or countersink's bare leading number is its point angle, not its size") {
+  std::vector<Diagnostic> diags;
+  const auto tools =
+      read_tools("%\nO78242\n(T2 .375 DRILL)\n(T8 90 SPOT DRILL)\n"
+                 "(T9 82 COUNTERSINK)\n(T10 12 SPOT DRILL)\n(T11 82 COUNTERSINK 16MM)\n"
+                 "G21\n%\n",
+                 diags);
+  CHECK(tools.at(2).diameter_mm == 0.375);
+  CHECK(tools.count(8) == 0); // its size is not written: not a 90 mm tool
+  CHECK(tools.count(9) == 0);
+  CHECK(tools.at(10).diameter_mm == 12); // 12 is no point angle: a 12 mm spot drill
+  CHECK(tools.at(10).tip_angle_deg == 90);
+  CHECK(tools.at(11).diameter_mm == 16);
+  CHECK(tools.at(11).tip_angle_deg == 82);
+}

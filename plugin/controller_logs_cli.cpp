@@ -119,7 +119,7 @@ int read_evidence(const LogOptions& o, const std::vector<std::string>& programs,
     if (program.estimate.failed) {
       std::fprintf(stderr, "ncjoule: %s cannot be estimated (see above)\n",
                    program.source.path.c_str());
-      return kInputError;
+      return failed_status(program.estimate);
     }
     if (has_runs)
       times[p] = plan_line_times(program, machine, needs_rapid_override(evidence, p));

@@ -168,7 +168,7 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
                  "%s: cannot be run on the model (see above); define the tools in the "
                  "program's header comments and give the stock with --stock\n",
                  o.program.c_str());
-    return kInputError;
+    return e.budget_exceeded ? kBudgetExceeded : kInputError;
   }
   const std::vector<OperatingSegment>& trace = e.trace;
 

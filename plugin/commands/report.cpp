@@ -55,10 +55,10 @@ int run_report(const ReportOptions& o) {
         {&programs[i].source, &programs[i].estimate, i < measured.size() ? &measured[i] : nullptr});
   const std::string html = html_report(inputs, machine);
   if (const std::string error = write_output_file(o.output, html); !error.empty()) {
-    std::cerr << "ncjoule: " << error << "; nothing was written\n";
+    std::cerr << "ncjoule: " << printable(error) << "; nothing was written\n";
     return kOutputError;
   }
-  std::cerr << "ncjoule: wrote " << o.output << " (" << html.size() / 1024 << " KiB, "
+  std::cerr << "ncjoule: wrote " << printable(o.output) << " (" << html.size() / 1024 << " KiB, "
             << programs.size() << (programs.size() == 1 ? " program" : " programs") << ")\n";
   return status;
 }

@@ -95,3 +95,10 @@ case_ "r3: budget, --in-place"             5 "max_removal_work" -- "$N" annotate
 check_ "r3: ... the file is unchanged"     cmp -s r3_helix.ngc r3_helix_in_place.ngc
 fi
 
+# Control bytes in the names other printers show: calibrate's report, check-log's tables, doctor.
+esc_name="$(printf 'r3_\033]0;title\007\033[31m')"
+printf 'rpm,power_w\n1000,560\n2000,770\n3000,980\n4000,1195\n' > "${esc_name}.csv"
+case_ "r3: ESC in a table's name"          0 "" -- "$N" calibrate -m "$M" --spindle "${esc_name}.csv" -o r3_fit_esc.toml
+check_ "r3: ... escaped on stdout"         sh -c "! LC_ALL=C grep -qaP '[\x07\x1b]' out.txt"
+case_ "r3: ESC in the config's name"       0 "" -- env NCJOULE_CONFIG="$PWD/${esc_name}.toml" "$N" doctor
+check_ "r3: ... doctor escapes it"         sh -c "! LC_ALL=C grep -qaP '[\x07\x1b]' out.txt"

@@ -15,8 +15,8 @@
 
 namespace ncjoule {
 
-// The budgets' defaults: 40 times or more what the largest corpus programs need (README,
-// "Limits"), and each ends a runaway program within seconds of one core.
+// The defaults: over 100 times the moves and path samples the largest corpus programs need, 3x
+// their removal work (README, "Limits"); each stops a runaway within seconds of one core.
 inline constexpr std::size_t kDefaultMaxMoves = 20'000'000;
 inline constexpr std::size_t kDefaultMaxPathSamples = 100'000'000;
 inline constexpr double kDefaultMaxColumnVisits = 2e10;

@@ -26,9 +26,10 @@ void print_fit(const TimingFit& fit) {
               "base profile, %.3f s fitted%s%s\n",
               fit.stretches, fit.runs, fit.rms_before_s, fit.rms_after_s,
               fit.converged ? "" : " (did not converge)",
-              fit.message.empty() ? "" : (" -- " + fit.message).c_str());
+              fit.message.empty() ? "" : (" -- " + printable(fit.message)).c_str());
+  // Notes and names quote the logs and the programs (a program's name, a block's text): escaped.
   for (const std::string& n : fit.notes)
-    std::printf("  note: %s\n", n.c_str());
+    std::printf("  note: %s\n", printable(n).c_str());
   for (const FittedTimingKey& f : fit.keys) {
     const TimingKeyInfo& info = timing_key_info(f.key);
     const std::string name = timing_key_name(f.key);
@@ -37,7 +38,7 @@ void print_fit(const TimingFit& fit) {
                   f.std_error * info.to_unit, f.base * info.to_unit);
     else
       std::printf("  %-42s %12.5g  left as in the base: %s\n", name.c_str(), f.base * info.to_unit,
-                  f.why.c_str());
+                  printable(f.why).c_str());
   }
 }
 
@@ -54,7 +55,7 @@ void print_totals(const LogEvidence& e, const std::vector<ProgramCheck>& before,
   for (std::size_t i = 0; i < before.size(); ++i) {
     const ProgramCheck& b = before[i];
     if (b.usable_runs == 0) continue;
-    std::string name = e.programs[b.program].outline.name;
+    std::string name = printable(e.programs[b.program].outline.name);
     if (name.size() > 40) name = name.substr(0, 37) + "...";
     std::printf("  %-40s %5zu %12.1f %14.1f %8s %14.1f %8s\n", name.c_str(), b.usable_runs,
                 b.measured.median, b.predicted_s, err(b.predicted_s, b.measured.median).c_str(),
@@ -90,13 +91,13 @@ std::optional<PowerConstants> fit_logged_power(const LogEvidence& e, const Machi
     }
     const LogFitResult fit = fit_power_log(*log, traced.trace, initial, fit_options);
     if (fit.report.points == 0) continue;
-    std::printf("power fit on run of %s at %s (%s):\n", p.outline.name.c_str(),
+    std::printf("power fit on run of %s at %s (%s):\n", printable(p.outline.name).c_str(),
                 format_log_time(e.runs[r.run].start_s).c_str(),
                 spindle_only ? "spindle load x the spindle's rating" : "logged electrical power");
     std::printf("  %zu samples, RMSE %.1f W, R^2 %.4f\n", fit.report.points, fit.report.rmse,
                 fit.report.r_squared);
     for (const std::string& n : fit.notes)
-      std::printf("  note: %s\n", n.c_str());
+      std::printf("  note: %s\n", printable(n).c_str());
     PowerConstants out = machine.power;
     if (spindle_only) {
       apply_fit(out, fit.report); // only the spindle and cutting terms it fitted
@@ -224,7 +225,7 @@ int run_timing_calibration(const TimingCalibrationOptions& o) {
     std::fprintf(stderr, "ncjoule: %s; nothing was written\n", error.c_str());
     return kOutputError;
   }
-  std::printf("wrote %s (%s)\n", o.output.c_str(), info.name.c_str());
+  std::printf("wrote %s (%s)\n", printable(o.output).c_str(), printable(info.name).c_str());
   return kOk;
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "command_registry.hpp"
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/text_file.hpp"
 
@@ -74,6 +75,10 @@ void print_diagnostics(const std::vector<Diagnostic>& diagnostics, std::size_t d
   }
   if (dropped > 0)
     std::cerr << "ncjoule: " << dropped << " more diagnostics not shown (too many)\n";
+}
+
+int failed_status(const Estimate& e) {
+  return e.budget_exceeded ? kBudgetExceeded : kInputError;
 }
 
 std::optional<Dialect> dialect_from_option(const std::string& name) {

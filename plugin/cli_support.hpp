@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "ncjoule/estimate.hpp"
 #include "ncjoule/gcode.hpp"
 #include "ncjoule/text_file.hpp"
 
@@ -20,6 +21,10 @@ std::optional<SourceFile> read_source(const std::string& path,
 // Prints diagnostics to stderr, one per line, in file:line:column form.
 // Prints each on its own line (control bytes escaped), then how many were left out.
 void print_diagnostics(const std::vector<Diagnostic>& diagnostics, std::size_t dropped = 0);
+
+// The exit status of an estimate that failed: kBudgetExceeded when a work budget stopped it
+// (the program may be fine), else kInputError.
+int failed_status(const Estimate& e);
 
 // Looks up a dialect by name, or prints the known names and returns nullopt.
 std::optional<Dialect> dialect_from_option(const std::string& name);

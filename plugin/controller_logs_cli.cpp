@@ -119,7 +119,7 @@ int read_evidence(const LogOptions& o, const std::vector<std::string>& programs,
     if (program.estimate.failed) {
       std::fprintf(stderr, "ncjoule: %s cannot be estimated (see above)\n",
                    program.source.path.c_str());
-      return kInputError;
+      return failed_status(program.estimate);
     }
     if (has_runs)
       times[p] = plan_line_times(program, machine, needs_rapid_override(evidence, p));
@@ -154,12 +154,15 @@ int measured_overlays(const LogOptions& o, const std::vector<std::string>& progr
   return kOk;
 }
 
+// Every text these tables take from a log (device, item, program and block names, what ended a
+// run) or a program (its name, operation names, a line's text) is printed escaped (printable):
+// a log or a comment holding ESC ] 0;title BEL does not drive the terminal.
 void print_log_summary(const LogEvidence& e) {
   const ControllerLog& log = e.log;
   std::printf("logs\n");
   for (const ControllerLog::File& f : log.files)
-    std::printf("  %s: %s, %zu observations, %s to %s\n", f.path.c_str(), f.format.c_str(),
-                f.observations, format_log_time(f.first_s).c_str(),
+    std::printf("  %s: %s, %zu observations, %s to %s\n", printable(f.path).c_str(),
+                printable(f.format).c_str(), f.observations, format_log_time(f.first_s).c_str(),
                 format_log_time(f.last_s).c_str());
   if (log.coverage.size() > 1)
     std::printf("  the files cover %zu separate stretches of time: a value logged in one is not "
@@ -172,13 +175,14 @@ void print_log_summary(const LogEvidence& e) {
         used += (used.empty() ? "" : ", ") + std::string(log_signal_name(LogSignal(s))) + " = " +
                 log.items[d][s];
     if (used.empty()) continue;
-    std::printf("  device %s: %s\n", log.devices[d].empty() ? "(unnamed)" : log.devices[d].c_str(),
-                used.c_str());
+    std::printf("  device %s: %s\n",
+                log.devices[d].empty() ? "(unnamed)" : printable(log.devices[d]).c_str(),
+                printable(used).c_str());
   }
   if (!log.unused_items.empty()) {
     std::printf("  not used:");
     for (std::size_t i = 0; i < log.unused_items.size() && i < 12; ++i)
-      std::printf("%s %s", i ? "," : "", log.unused_items[i].c_str());
+      std::printf("%s %s", i ? "," : "", printable(log.unused_items[i]).c_str());
     if (log.unused_items.size() > 12) std::printf(", and %zu more", log.unused_items.size() - 12);
     std::printf("\n");
   }
@@ -211,7 +215,7 @@ void print_run_table(const LogEvidence& e) {
     std::string why;
     for (const std::string& w : r.why)
       why += (why.empty() ? "" : "; ") + w;
-    std::string name = e.programs[r.program].outline.name;
+    std::string name = printable(e.programs[r.program].outline.name);
     if (name.size() > 24) name = name.substr(0, 21) + "...";
     auto ratio = [](double x) {
       char text[16];
@@ -221,13 +225,14 @@ void print_run_table(const LogEvidence& e) {
     std::printf(
         "  %-4zu %-20s %-24s %10.1f %-18s %-9s %-9s %7s %7s %s\n", ++k,
         format_log_time(run.start_s).substr(0, 19).c_str(), name.c_str(), r.measured_s,
-        run.ended.c_str(),
+        printable(run.ended).c_str(),
         override_text(a.feed_override_known, a.feed_override_min, a.feed_override_max).c_str(),
         override_text(a.rapid_override_known, a.rapid_override_min, a.rapid_override_max).c_str(),
         ratio(r.feed_ratio).c_str(), ratio(r.rapid_ratio).c_str(),
-        r.usable ? "usable" : why.c_str());
+        r.usable ? "usable" : printable(why).c_str());
     for (const std::string& n : r.notes)
-      if (n.find("not logged") == std::string::npos) std::printf("       note: %s\n", n.c_str());
+      if (n.find("not logged") == std::string::npos)
+        std::printf("       note: %s\n", printable(n).c_str());
   }
   print_run_table_legend();
 }
@@ -236,27 +241,27 @@ void print_program_checks(const LogEvidence& e, const std::vector<ProgramCheck>&
   for (const ProgramCheck& c : checks) {
     const LoggedProgram& p = e.programs[c.program];
     if (c.runs == 0) {
-      std::printf("%s: no run in the logs\n", p.source.path.c_str());
+      std::printf("%s: no run in the logs\n", printable(p.source.path).c_str());
       continue;
     }
     if (c.usable_runs == 0) {
       std::printf("%s: %zu run%s, none usable (see the runs above); predicted %.1f s\n",
-                  p.source.path.c_str(), c.runs, c.runs > 1 ? "s" : "", c.predicted_s);
+                  printable(p.source.path).c_str(), c.runs, c.runs > 1 ? "s" : "", c.predicted_s);
       continue;
     }
-    std::printf("%s: %zu usable run%s of %zu\n", p.source.path.c_str(), c.usable_runs,
+    std::printf("%s: %zu usable run%s of %zu\n", printable(p.source.path).c_str(), c.usable_runs,
                 c.usable_runs > 1 ? "s" : "", c.runs);
     std::printf("  time        measured %s s, predicted %.1f s (%s)\n",
                 seconds_range(c.measured).c_str(), c.predicted_s,
                 percent_error(c.predicted_s, c.measured.median).c_str());
     std::size_t width = 9;
     for (const OperationCheck& op : c.operations)
-      width = std::max(width, op.name.size());
+      width = std::max(width, printable(op.name).size());
     std::printf("  by operation (measured: median of the usable runs, and their range):\n");
     std::printf("    %-*s %4s %5s %22s %12s %8s\n", int(width), "operation", "tool", "line",
                 "measured s", "predicted s", "error");
     for (const OperationCheck& op : c.operations)
-      std::printf("    %-*s %4s %5d %22s %12.1f %8s\n", int(width), op.name.c_str(),
+      std::printf("    %-*s %4s %5d %22s %12.1f %8s\n", int(width), printable(op.name).c_str(),
                   op.tool > 0 ? ("T" + std::to_string(op.tool)).c_str() : "-", op.line,
                   seconds_range(op.measured).c_str(), op.predicted_s,
                   percent_error(op.predicted_s, op.measured.median).c_str());
@@ -269,7 +274,7 @@ void print_program_checks(const LogEvidence& e, const std::vector<ProgramCheck>&
         const std::string lines = b.next == b.first + 1 || b.next > p.outline.lines
                                       ? std::to_string(b.first)
                                       : std::to_string(b.first) + "-" + std::to_string(b.next - 1);
-        std::printf("    %-11s %-48s %12.2f %12.2f %8s\n", lines.c_str(), b.text.c_str(),
+        std::printf("    %-11s %-48s %12.2f %12.2f %8s\n", lines.c_str(), printable(b.text).c_str(),
                     b.measured.median, b.predicted_s,
                     percent_error(b.predicted_s, b.measured.median).c_str());
       }

@@ -103,6 +103,22 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(finite_between(1, 1e9));
   cmd.add_option("--input-limit", s.input_limit_mib, "Largest program read, in MiB (default 512)")
       ->check(finite_between(0.001, 1e6));
+  // The work budgets: a run that would pass one stops with exit 5 (a program that asks for more
+  // work than allowed, which a control may well run), not 2.
+  cmd.add_option("--max-moves", s.max_moves,
+                 "Most moves (canonical commands) the program may expand to through its loops, "
+                 "canned cycles and splines (default 20000000; max_moves in the user config); "
+                 "beyond it the run stops, exit 5")
+      ->check(finite_between(1, 1e15));
+  cmd.add_option("--max-path-samples", s.max_path_samples,
+                 "Most path samples the planner may make for the program (default 100000000; "
+                 "max_path_samples in the user config); beyond it the run stops, exit 5")
+      ->check(finite_between(1, 1e15));
+  cmd.add_option("--max-removal-work", s.max_removal_work,
+                 "Most removal work, in grid columns under the tool summed over its steps "
+                 "(default 2e10; max_removal_work in the user config); beyond it the run stops, "
+                 "exit 5")
+      ->check(finite_between(1, 1e18));
   cmd.add_flag("--no-removal", s.no_removal,
                "Do not simulate material removal (no tools needed; cutting power is zero)");
   cmd.add_option("--co2", s.co2_kg_per_kwh,
@@ -208,6 +224,9 @@ std::optional<EstimateSettings> completed(EstimateSettings s, const std::string&
   if (!s.price_per_kwh) s.price_per_kwh = config->price_per_kwh;
   if (!s.machine_rate_per_hour) s.machine_rate_per_hour = config->machine_rate_per_hour;
   if (!s.co2_kg_per_kwh) s.co2_kg_per_kwh = config->co2_kg_per_kwh;
+  if (!s.max_moves) s.max_moves = config->max_moves;
+  if (!s.max_path_samples) s.max_path_samples = config->max_path_samples;
+  if (!s.max_removal_work) s.max_removal_work = config->max_removal_work;
   if (s.currency.empty()) s.currency = config->currency;
   s.config_stock = config->stock;
   s.config_stock_origin = config->stock_origin;
@@ -311,6 +330,9 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   options.removal.engine = s.engine == "voxel" ? EngineKind::Voxel : EngineKind::Dexel;
   options.removal.grid_mm = s.grid_mm;
   options.removal.memory_budget_bytes = memory_budget_bytes(s);
+  if (s.max_moves) options.limits.max_commands = std::size_t(*s.max_moves);
+  if (s.max_path_samples) options.max_path_samples = std::size_t(*s.max_path_samples);
+  if (s.max_removal_work) options.max_removal_work = *s.max_removal_work;
   options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
   options.energy.price_per_kwh = s.price_per_kwh;
   options.energy.machine_rate_per_hour = s.machine_rate_per_hour;

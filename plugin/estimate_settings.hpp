@@ -29,6 +29,9 @@ struct EstimateSettings {
   double memory_limit_mib = 0; // 0: default_memory_budget_bytes()
   double input_limit_mib = double(kDefaultMaxProgramBytes >> 20);
   bool no_removal = false;
+  // The work budgets (ncjoule/budget.hpp): --max-moves, --max-path-samples, --max-removal-work,
+  // else the user config's max_moves, max_path_samples, max_removal_work, else the defaults.
+  std::optional<double> max_moves, max_path_samples, max_removal_work;
   std::optional<double> co2_kg_per_kwh, price_per_kwh, machine_rate_per_hour;
   std::string currency; // of the price and the rate; empty: the profile's
   // Filled in by estimate_options from the program's .stock file and the user config.
@@ -36,7 +39,8 @@ struct EstimateSettings {
   TextOrigin program_stock_origin, config_stock_origin; // where those two stocks are written
 };
 
-// Adds --machine, --dialect, --stock, --stock-from, --job, --tool, --tool-table, --tool-units, --macro-dir,
+// Adds --machine, --dialect, --stock, --stock-from, --job, --tool, --tool-table, --tool-units,
+// --macro-dir,
 // --engine,
 // --grid, --no-removal, --co2 and --price to a subcommand.
 void add_estimate_settings(CLI::App& cmd, EstimateSettings& settings);

@@ -47,7 +47,10 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
                                                 "material removal stage"
                                               : "")
                 << '\n';
-    if (error) status = kInputError;
+    if (p.estimate.budget_exceeded)
+      status = kBudgetExceeded;
+    else if (error && status != kBudgetExceeded)
+      status = kInputError;
   }
   return status;
 }

@@ -86,16 +86,20 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
       {"tool_table", &UserConfig::tool_table, true}, {"tool_units", &UserConfig::tool_units, false},
       {"stock", &UserConfig::stock, false},          {"dialect", &UserConfig::dialect, false},
       {"currency", &UserConfig::currency, false}};
-  // The shop's costs, numbers with the range the command line's options take.
+  // The shop's costs and the work budgets: numbers with the range the command line's options
+  // take (max, min).
   struct NumberKey {
     const char* name;
     std::optional<double> UserConfig::*field;
-    double max;
+    double max, min;
   };
   static const NumberKey number_keys[] = {
-      {"price_per_kwh", &UserConfig::price_per_kwh, 1e6},
-      {"machine_rate_per_hour", &UserConfig::machine_rate_per_hour, 1e7},
-      {"co2_kg_per_kwh", &UserConfig::co2_kg_per_kwh, 100}};
+      {"price_per_kwh", &UserConfig::price_per_kwh, 1e6, 0},
+      {"machine_rate_per_hour", &UserConfig::machine_rate_per_hour, 1e7, 0},
+      {"co2_kg_per_kwh", &UserConfig::co2_kg_per_kwh, 100, 0},
+      {"max_moves", &UserConfig::max_moves, 1e15, 1},
+      {"max_path_samples", &UserConfig::max_path_samples, 1e15, 1},
+      {"max_removal_work", &UserConfig::max_removal_work, 1e18, 1}};
   for (const auto& [name, node] : document) {
     const auto where = node.source().begin;
     const Key* key = nullptr;
@@ -106,10 +110,11 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
       if (name.str() == k.name) number_key = &k;
     if (number_key) {
       const std::optional<double> value = node.value<double>(); // an integer is taken too
-      if (!value || !std::isfinite(*value) || *value < 0 || *value > number_key->max) {
+      if (!value || !std::isfinite(*value) || *value < number_key->min ||
+          *value > number_key->max) {
         char text[160];
-        std::snprintf(text, sizeof text, "%s: must be a number from 0 to %g", number_key->name,
-                      number_key->max);
+        std::snprintf(text, sizeof text, "%s: must be a number from %g to %g", number_key->name,
+                      number_key->min, number_key->max);
         diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column), text});
         failed = true;
         continue;
@@ -122,7 +127,8 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
                              std::string(name.str()) +
                                  ": unknown key, ignored (known: machine, material, tool_table, "
                                  "tool_units, stock, dialect, price_per_kwh, "
-                                 "machine_rate_per_hour, currency, co2_kg_per_kwh)"});
+                                 "machine_rate_per_hour, currency, co2_kg_per_kwh, "
+                                 "max_moves, max_path_samples, max_removal_work)"});
       continue;
     }
     if (!node.is_string() || node.value<std::string>()->empty()) {

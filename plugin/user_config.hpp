@@ -11,6 +11,9 @@
 //       machine_rate_per_hour = 85       # the machine's time (depreciation, space, operator)
 //       currency = "EUR"                 # the two above are in it (default: the profile's)
 //       co2_kg_per_kwh = 0.35            # the shop's electricity mix
+//       max_moves = 20000000             # the work budgets (--max-moves, --max-path-samples,
+//       max_path_samples = 100000000     # --max-removal-work): a run that passes one stops,
+//       max_removal_work = 2e10          # exit 5
 //   PROGRAM.ncjoule.toml next to PROGRAM.nc: a job file (stock, material, [[tool]] entries)
 //   PROGRAM.stock next to PROGRAM.nc: one stock, as --stock takes it
 //
@@ -33,6 +36,8 @@ struct UserConfig {
   // The shop's costs: each overrides the machine profile's, and --price, --machine-rate and
   // --co2 override them.
   std::optional<double> price_per_kwh, machine_rate_per_hour, co2_kg_per_kwh;
+  // The work budgets; the command line's --max-moves, ... override them.
+  std::optional<double> max_moves, max_path_samples, max_removal_work;
   TextOrigin stock_origin; // where `stock` is written, for its diagnostics
 };
 

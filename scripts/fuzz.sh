@@ -1,23 +1,30 @@
 #!/usr/bin/env bash
 # Fuzzes ncjoule with libFuzzer (clang, ASan, UBSan): the G-code lexer, the interpreter, the whole
-# pipeline (estimate with removal, annotate, strip), machine profiles (TOML) and the annotator in
+# pipeline (estimate with removal, annotate, strip), machine profiles (TOML), the annotator in
 # every dialect (annotation: strip gives the program back, the annotated program runs block for
-# block as the original, no line outgrows the dialect's limit).
+# block as the original, no line outgrows the dialect's limit), and the readers of what users
+# measure and write besides programs: power logs (power_log), calibration tables fitted with
+# Ceres (calibration_tables), job files (job_file) and MTConnect controller logs
+# (controller_log).
 #
 #   scripts/fuzz.sh [SECONDS] [TARGET...]     default: 60 s for each of lexer, interpreter,
-#                                             pipeline, profile and annotation
+#                                             pipeline, profile, annotation, power_log,
+#                                             calibration_tables, job_file, controller_log
 #   RUNS=1000000 scripts/fuzz.sh 0 pipeline   a number of executions instead of a time
 #
 # Builds in fuzz-build/ (or $FUZZ_BUILD_DIR; CMake, NCJOULE_FUZZ=ON, clang), seeds each target's
 # corpus from LinuxCNC's bundled nc_files and samples/ (programs, or profiles for the profile
-# target), and runs it. Crashes, hangs and sanitizer reports land in fuzz-build/artifacts/ and
+# target; the readers' targets from their committed seeds, tests/fuzz/seeds/TARGET, which the
+# test suite replays through each target built without libFuzzer), and runs it. Crashes, hangs and sanitizer reports land in fuzz-build/artifacts/ and
 # make the script fail; the last lines of each run (executions, speed) are printed.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(lexer interpreter pipeline profile annotation)
+[ ${#targets[@]} -gt 0 ] ||
+  targets=(lexer interpreter pipeline profile annotation power_log calibration_tables job_file
+           controller_log)
 out="${FUZZ_BUILD_DIR:-$root/fuzz-build}" # FUZZ_BUILD_DIR: a build folder of one's own
 ncfiles="${LINUXCNC_NCFILES:-/usr/share/linuxcnc/ncfiles}"
 mkdir -p "$out/artifacts"
@@ -35,7 +42,9 @@ for target in "${targets[@]}"; do
   corpus="$out/corpus-$target"
   seeds="$out/seeds-$target"
   mkdir -p "$corpus" "$seeds"
-  if [ "$target" = profile ]; then
+  if [ -d "$root/tests/fuzz/seeds/$target" ]; then
+    cp -f "$root/tests/fuzz/seeds/$target"/* "$seeds/"
+  elif [ "$target" = profile ]; then
     cp -f "$root"/samples/machines/*.toml "$seeds/"
   else
     # Real programs, small enough to mutate quickly.
@@ -88,7 +97,9 @@ for target in "${targets[@]}"; do
   extra=()
   case "$target" in
     lexer) max_len=4096 ;;
-    profile) max_len=2048 ;;
+    profile | job_file) max_len=2048 ;;
+    power_log | calibration_tables) max_len=1024 ;;
+    controller_log) max_len=4096 ;;
     interpreter) max_len=1024 ;;
     # Every input annotated in each of the 8 dialects: long enough for lines past grbl's 125 bytes
     # and the default 250.

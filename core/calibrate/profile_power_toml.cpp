@@ -21,11 +21,22 @@ std::string number(double v) {
   return s;
 }
 
+// A TOML basic string: quotes and backslashes escaped, and control characters too (\u001B), which
+// TOML does not allow raw (a file name holding ESC would make a profile that does not load).
 std::string quoted(std::string_view s) {
   std::string out = "\"";
   for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if ((byte < 0x20 && c != '\t') || byte == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\u%04X", unsigned(byte));
+      out += escaped;
+    } else {
+      out += c;
+    }
   }
   return out + "\"";
 }

@@ -25,6 +25,7 @@
 #include "result_fold.hpp"
 #include "setups.hpp"
 #include "stage_queue.hpp"
+#include "work_budget.hpp"
 
 namespace ncjoule {
 namespace {
@@ -343,6 +344,11 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                                                : " (say which with power_on_units = \"inch\" or "
                                                  "\"mm\" under [setup] in the profile)")}},
                     source.path);
+  // Stopped by the budget of moves (its error is among the diagnostics): not a program error.
+  if (interpreter.max_commands && run.commands > interpreter.max_commands) {
+    e.failed = e.budget_exceeded = true;
+    return e;
+  }
   check_holds_gcode(run, e);
   if (e.failed) return e;
   if (auto long_arcs = scan.long_arcs.verdict(source.path))
@@ -469,6 +475,9 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   again.dialect = e.dialect;      // as the first pass chose it
   again.keep_diagnostics = false; // the first pass gave them
   std::size_t streamed = 0;
+  estimate_detail::WorkBudget work_budget(options.max_path_samples,
+                                          options.simulate_removal ? options.max_removal_work : 0,
+                                          setup_removals, e.tools, source.path);
   struct Timed {
     CanonCommand command;
     TimedCommand timed;
@@ -494,11 +503,16 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
           planner_diagnostics = planner.take_diagnostics();
         },
         [&](Timed& t) {
+          work_budget.count(t.command, t.timed); // before removal cuts it
           folder.take(t.command, std::move(t.timed));
           ++streamed;
         });
     add_diagnostics(e, std::move(planner_diagnostics), source.path);
     folder.finish(total_s);
+  } catch (const BudgetExceeded& stopped) {
+    add_diagnostics(e, {stopped.diagnostic}, source.path);
+    e.failed = e.budget_exceeded = true;
+    return e;
   } catch (const std::exception& ex) {
     e.diagnostics.push_back(
         {Severity::Error, source.path, 0, 0, std::string("material removal failed: ") + ex.what()});
@@ -516,7 +530,8 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                              "profile or the stock is out of range"});
     e.failed = true;
   }
-  logger().info("stream: {} commands in {:.3f} s", streamed, seconds_since(t));
+  logger().info("stream: {} commands, {} path samples, {:.3g} removal column visits in {:.3f} s",
+                streamed, work_budget.path_samples(), work_budget.removal_work(), seconds_since(t));
   if (options.progress) options.progress(1);
   return e;
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "codes.hpp"
+#include "ncjoule/budget.hpp"
 #include "value_limits.hpp"
 
 namespace ncjoule::detail {
@@ -138,10 +139,12 @@ CanonCommand Interpreter::make(CanonKind kind) const {
 
 void Interpreter::emit(CanonCommand c) {
   ++command_count_;
+  // The budget of moves (budget.hpp): counted per command, checked here once for every way a
+  // program has to make them (loops, canned cycles' L, splines, arcs' turns, calls). A stopped
+  // run's InterpretResult::commands is over max_commands: how its callers tell the stop.
   if (options_.max_commands && command_count_ > options_.max_commands) {
     if (!finished_)
-      error(0, "more than " + std::to_string(options_.max_commands) +
-                   " canonical commands: stopped (runaway loop?)");
+      error(0, budget_message("moves", double(options_.max_commands), "max-moves", "max_moves"));
     stop();
     return;
   }

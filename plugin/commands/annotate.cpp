@@ -82,7 +82,7 @@ int run_annotate(const AnnotateCliOptions& o) {
   if (result.estimate.failed) {
     std::cerr << "ncjoule: " << printable(input->path)
               << " could not be estimated (see above); nothing was written\n";
-    return kInputError;
+    return failed_status(result.estimate);
   }
   // Errors are what the controller itself would refuse: the program is still annotated (the
   // header lists them), and the exit status says so.
@@ -140,7 +140,9 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       "is written), or a program with errors its controller would refuse (annotated all the "
       "same when it could be estimated, its header listing them; the last line says "
       "'annotated FILE, with errors'); 3 nothing was written: the output could not be written, "
-      "or --in-place found the file still being written or changed (the file is untouched).");
+      "or --in-place found the file still being written or changed (the file is untouched); 5 "
+      "a work budget (--max-moves, --max-path-samples, --max-removal-work) stopped the run: "
+      "nothing was written.");
   cmd->callback([options, &exit_code] { exit_code = run_annotate(*options); });
 });
 

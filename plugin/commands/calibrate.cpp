@@ -47,9 +47,10 @@ struct CalibrateCliOptions {
 };
 
 void print_report(const FitReport& fit) {
-  std::printf("%s: %zu points, RMSE %.6g, R^2 %.5f%s%s\n", fit.what.c_str(), fit.points, fit.rmse,
-              fit.r_squared, fit.converged ? "" : " (did not converge)",
-              fit.message.empty() ? "" : (" -- " + fit.message).c_str());
+  // `what` names the user's file, and a message may quote it: escaped (printable).
+  std::printf("%s: %zu points, RMSE %.6g, R^2 %.5f%s%s\n", printable(fit.what).c_str(), fit.points,
+              fit.rmse, fit.r_squared, fit.converged ? "" : " (did not converge)",
+              fit.message.empty() ? "" : (" -- " + printable(fit.message)).c_str());
   for (const FittedConstant& c : fit.constants) {
     const auto& info = parameter_info(c.parameter);
     if (c.held)
@@ -77,7 +78,7 @@ std::optional<std::vector<SteadyStateReading>> read_table(const std::string& pat
 std::string note_for(const FitReport& fit, const FittedConstant& c, const std::string& file) {
   char text[256];
   std::snprintf(text, sizeof text, "fitted from %s: +- %.3g (1 SE), %zu points, R^2 %.4f",
-                file.c_str(), c.std_error, fit.points, fit.r_squared);
+                printable(file).c_str(), c.std_error, fit.points, fit.r_squared);
   return text;
 }
 
@@ -168,7 +169,7 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
                  "%s: cannot be run on the model (see above); define the tools in the "
                  "program's header comments and give the stock with --stock\n",
                  o.program.c_str());
-    return kInputError;
+    return e.budget_exceeded ? kBudgetExceeded : kInputError;
   }
   const std::vector<OperatingSegment>& trace = e.trace;
 
@@ -182,15 +183,15 @@ int fit_from_log(const CalibrateCliOptions& o, MachineProfile machine, Calibrati
                  (fit.report.refused.empty() ? fit.report.message : fit.report.refused).c_str());
     return kInputError;
   }
-  std::printf("%s: %zu samples over %.1f s; %s runs %.1f s on %s\n", o.log.c_str(), log->t_s.size(),
-              log->t_s.back() - log->t_s.front(), o.program.c_str(), e.time_s,
-              machine.name.c_str());
+  std::printf("%s: %zu samples over %.1f s; %s runs %.1f s on %s\n", printable(o.log).c_str(),
+              log->t_s.size(), log->t_s.back() - log->t_s.front(), printable(o.program).c_str(),
+              e.time_s, printable(machine.name).c_str());
   std::printf("time offset: the program starts %.3f s into the log\n", fit.offset_s);
   for (const std::string& note : fit.notes)
-    std::printf("  note: %s\n", note.c_str());
+    std::printf("  note: %s\n", printable(note).c_str());
   char how[160];
-  std::snprintf(how, sizeof how, " (program %s, offset %.3f s, %s loss)", o.program.c_str(),
-                fit.offset_s, o.loss.c_str());
+  std::snprintf(how, sizeof how, " (program %s, offset %.3f s, %s loss)",
+                printable(o.program).c_str(), fit.offset_s, o.loss.c_str());
   calibration.constants = fit.constants; // the fitted values, and the exponent where held
   calibration.use(fit.report, o.log, how);
   return kOk;
@@ -305,7 +306,7 @@ int run_calibrate(const CalibrateCliOptions& o) {
     return kInputError;
   }
   if (const int status = write_profile(o.output, *text); status != kOk) return status;
-  std::printf("wrote %s (model %s)\n", o.output.c_str(),
+  std::printf("wrote %s (model %s)\n", printable(o.output).c_str(),
               std::string(model_name(constants.model)).c_str());
   return kOk;
 }

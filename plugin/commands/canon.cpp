@@ -16,6 +16,7 @@ struct CanonOptions {
   std::string tool_units = "mm";
   bool block_delete = false;
   bool parse_only = false;
+  std::size_t max_moves = kDefaultMaxMoves; // the budget of moves (ncjoule/budget.hpp)
 };
 
 // rs274's "%5ld N..... " before each line: the sequence number right-aligned in five columns.
@@ -42,6 +43,7 @@ int run_canon(const CanonOptions& o) {
     if (!options.dialect) return kUsage;
   }
   options.block_delete = o.block_delete;
+  options.max_commands = o.max_moves;
   if (!o.tool_table.empty()) {
     auto table = read_source(o.tool_table, kMaxSettingsFileBytes);
     if (!table) return kInputError;
@@ -74,6 +76,7 @@ int run_canon(const CanonOptions& o) {
   std::fwrite(lines.data(), 1, lines.size(), stdout);
   std::fflush(stdout);
   print_diagnostics(result.diagnostics);
+  if (result.commands > options.max_commands) return kBudgetExceeded; // the budget of moves
   for (const Diagnostic& d : result.diagnostics)
     if (d.severity == Severity::Error) return kInputError;
   return kOk;
@@ -93,6 +96,10 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"mm", "inch"}));
   cmd->add_flag("--block-delete", options->block_delete, "Skip blocks that start with /");
   cmd->add_flag("--parse-only", options->parse_only, "Interpret but print nothing (benchmarks)");
+  cmd->add_option("--max-moves", options->max_moves,
+                  "Most commands the program may expand to (default 20000000); beyond it the "
+                  "listing stops, exit 5")
+      ->check(CLI::Range(std::size_t(1), std::size_t(1e15)));
   cmd->callback([options, &exit_code] { exit_code = run_canon(*options); });
 });
 

@@ -40,7 +40,8 @@ int run_check_log(const CheckLogCliOptions& o) {
     std::printf("%s\n", check_json(evidence, checks, machine).c_str());
     return kOk;
   }
-  std::printf("on %s (%s)\n", machine.name.c_str(), machine.source_path.c_str());
+  std::printf("on %s (%s)\n", printable(machine.name).c_str(),
+              printable(machine.source_path).c_str());
   print_log_summary(evidence);
   print_run_table(evidence);
   print_program_checks(evidence, checks);

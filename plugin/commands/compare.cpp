@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "multi_estimate.hpp"
 #include "ncjoule/diagnostic.hpp"
@@ -187,7 +188,7 @@ int run_compare(const CompareOptions& o) {
   const int status = estimate_files(o.files, o.settings, machine, programs);
   if (status != kOk && status != kInputError) return status;
   for (const EstimatedProgram& p : programs)
-    if (p.estimate.failed) return kInputError;
+    if (p.estimate.failed) return failed_status(p.estimate);
   if (programs.size() < o.files.size()) return status;
 
   std::vector<ProgramTotals> totals;
@@ -217,7 +218,8 @@ const Registration registration([](CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"energy", "time", "cost"}));
   cmd->add_flag("--json", options->json, "Print the ranking as JSON (docs/report.md)");
   cmd->footer("Exit codes: 0 ranked; 1 bad command line; 2 a program or the profile cannot be "
-              "read or estimated.");
+              "read or estimated; 5 a work budget (--max-moves, --max-path-samples, "
+              "--max-removal-work) stopped the run.");
   cmd->callback([options, &exit_code] { exit_code = run_compare(*options); });
 });
 

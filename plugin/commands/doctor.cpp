@@ -6,6 +6,7 @@
 // The checks are the list in checks() below, run in order; each prints its findings through
 // Findings. A platform adds its own checks there; where the program runs from comes from
 // platform.hpp, the library's file from library_path() below.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -33,17 +34,28 @@ namespace {
 namespace fs = std::filesystem;
 
 // One finding: "ok", "note" (optional and absent, or worth knowing) or "FAIL" (ncjoule cannot
-// work as set up). The fix is printed on the next line.
+// work as set up). The fix is printed on the next line. Findings quote paths, a config's values
+// and profile names: each line is printed escaped (printable), the line breaks kept.
 struct Findings {
   int failures = 0;
-  void ok(const std::string& what) { std::printf("ok    %s\n", what.c_str()); }
+  static std::string shown(const std::string& text) {
+    std::string out;
+    for (std::size_t start = 0; start <= text.size();) {
+      const std::size_t end = std::min(text.find('\n', start), text.size());
+      out += printable(std::string_view(text).substr(start, end - start));
+      if (end < text.size()) out += '\n';
+      start = end + 1;
+    }
+    return out;
+  }
+  void ok(const std::string& what) { std::printf("ok    %s\n", shown(what).c_str()); }
   void note(const std::string& what, const std::string& fix = {}) {
-    std::printf("note  %s\n", what.c_str());
-    if (!fix.empty()) std::printf("      %s\n", fix.c_str());
+    std::printf("note  %s\n", shown(what).c_str());
+    if (!fix.empty()) std::printf("      %s\n", shown(fix).c_str());
   }
   void fail(const std::string& what, const std::string& fix) {
     ++failures;
-    std::printf("FAIL  %s\n      %s\n", what.c_str(), fix.c_str());
+    std::printf("FAIL  %s\n      %s\n", shown(what).c_str(), shown(fix).c_str());
   }
 };
 

@@ -172,7 +172,7 @@ int run_estimate(const EstimateCliOptions& o) {
                       ? "; --no-removal estimates it without the material removal stage"
                       : "")
               << '\n';
-    return kInputError;
+    return failed_status(e);
   }
   if (o.json) {
     write_estimate_json(std::cout, e, machine);

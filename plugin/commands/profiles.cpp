@@ -5,6 +5,7 @@
 #include <string>
 
 #include "command_registry.hpp"
+#include "ncjoule/diagnostic.hpp"
 #include "ncjoule/profile.hpp"
 #include "user_config.hpp"
 
@@ -28,10 +29,12 @@ const Registration registration([](CLI::App& app, int& exit_code) {
     for (const auto& [stem, path] : shipped) {
       try {
         const MachineProfile m = load_profile(path);
-        std::printf("%-24s %s%s%s\n", stem.c_str(), m.name.c_str(), m.summary.empty() ? "" : ": ",
-                    m.summary.c_str());
+        // File names and a profile's own texts, escaped (printable) as every output is.
+        std::printf("%-24s %s%s%s\n", printable(stem).c_str(), printable(m.name).c_str(),
+                    m.summary.empty() ? "" : ": ", printable(m.summary).c_str());
       } catch (const ProfileError& e) {
-        std::printf("%-28s cannot be read: %s\n", stem.c_str(), e.what());
+        std::printf("%-28s cannot be read: %s\n", printable(stem).c_str(),
+                    printable(e.what()).c_str());
         exit_code = kInputError;
       }
     }

@@ -17,6 +17,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "command_registry.hpp"
 #include "controller_logs_cli.hpp"
 #include "multi_estimate.hpp"
@@ -40,7 +41,7 @@ int run_report(const ReportOptions& o) {
   if (status != kOk && status != kInputError) return status;
   if (programs.size() < o.files.size()) return status;
   for (const EstimatedProgram& p : programs)
-    if (p.estimate.failed) return kInputError; // nothing to chart: no report is written
+    if (p.estimate.failed) return failed_status(p.estimate); // nothing to chart: no report
 
   std::vector<MeasuredOverlay> measured;
   if (!o.logs.logs.empty())
@@ -54,10 +55,10 @@ int run_report(const ReportOptions& o) {
         {&programs[i].source, &programs[i].estimate, i < measured.size() ? &measured[i] : nullptr});
   const std::string html = html_report(inputs, machine);
   if (const std::string error = write_output_file(o.output, html); !error.empty()) {
-    std::cerr << "ncjoule: " << error << "; nothing was written\n";
+    std::cerr << "ncjoule: " << printable(error) << "; nothing was written\n";
     return kOutputError;
   }
-  std::cerr << "ncjoule: wrote " << o.output << " (" << html.size() / 1024 << " KiB, "
+  std::cerr << "ncjoule: wrote " << printable(o.output) << " (" << html.size() / 1024 << " KiB, "
             << programs.size() << (programs.size() == 1 ? " program" : " programs") << ")\n";
   return status;
 }
@@ -83,7 +84,8 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->footer(
       "Exit codes: 0 written; 1 bad command line; 2 a program, the profile or a --log "
       "cannot be read or estimated (no page is written when a program has no numbers); 3 the "
-      "page could not be written (an existing file is left as it was).");
+      "page could not be written (an existing file is left as it was); 5 a work budget "
+      "(--max-moves, --max-path-samples, --max-removal-work) stopped the run: no page.");
   cmd->callback([options, &exit_code] { exit_code = run_report(*options); });
 });
 

@@ -66,3 +66,49 @@ case_ "r3: ESC ] title, summary"           0 "" -- "$N" estimate r3_title.ngc -m
 check_ "r3: ... escaped on stdout"         sh -c "! LC_ALL=C grep -qaP '[\x07\x1b]' out.txt"
 case_ "r3: ESC ] title, CSV"               0 "" -- "$N" estimate r3_title.ngc -m "$M" --no-removal --csv
 check_ "r3: ... escaped in the CSV"        sh -c "! LC_ALL=C grep -qaP '[\x07\x1b]' out.txt"
+
+# Work budgets: programs a control would run for days stop within seconds, exit 5 (not 2: the
+# program is not refused), saying which budget, where and how to raise it; nothing is written.
+# The defaults are what these use: each must end within 20 s of one core (the 60 s limit is of
+# the wall clock, which a busy machine stretches).
+printf 'G21 G90 G17\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\nG1 Z-1 F500\no100 repeat [1000000]\nG5 X10 Y0 I5000 J5000 P5000 Q-5000\nG5 X0 Y0 I-5000 J5000 P-5000 Q-5000\no100 endrepeat\nM2\n' > r3_spline_loop.ngc
+printf 'G21 G90\nT1 M6\nS1000 M3\nG0 X0 Y0 Z5\no100 repeat [1000000]\nG91 G81 X1 Y0 Z-1 R1 F100 L100000\nG80 G90\no100 endrepeat\nM2\n' > r3_cycle_loop.ngc
+# 9 lines, 19.6 km of cutting: a helix of 62,400 turns of 100 mm across, at a fine grid (the
+# automatic grid, coarsened for its length, times it in about 30 s of one core).
+printf 'G21 G90 G17\nT1 M6\nS10000 M3\nG0 X-50 Y0 Z5\nG1 Z-1 F5000\nG2 X-50 Y0 I50 J0 Z-2 P62400\nG0 Z5\nM5\nM2\n' > r3_helix.ngc
+children_cpu_() { # the processor seconds of this shell's finished children so far
+  times > r3_times.txt # here, not in a pipeline's subshell (which has no children yet)
+  awk 'NR == 2 { n = split($0, t, /[ms ]+/); s = 0
+    for (i = 1; i + 1 <= n; i += 2) s += 60 * t[i] + t[i + 1]; printf "%.0f", s }' r3_times.txt
+}
+budget_case_() { # NAME WORD -- command...: case_ with exit 5, and the processor time it took
+  local name="$1" word="$2" before
+  shift 3
+  children_cpu_ > r3_cpu.txt # called here: $(...) would run it in a subshell
+  before=$(< r3_cpu.txt)
+  case_ "$name" 5 "$word" -- "$@"
+  children_cpu_ > r3_cpu.txt
+  local cpu=$(($(< r3_cpu.txt) - before))
+  check_ "r3: ... within 20 s of one core ($cpu s)" test "$cpu" -le 20
+}
+# With the default budgets these take seconds each: left out of --quick (the test suite's run;
+# tests/cli/work_budgets_cli_test.py checks the same with small budgets).
+if [ "$quick" = 0 ]; then
+budget_case_ "r3: G5 spline in repeat [1e6]"    "max-moves" -- "$N" annotate r3_spline_loop.ngc -m "$M" -o r3_budget.ngc
+check_ "r3: ... writes nothing"            test ! -e r3_budget.ngc
+check_ "r3: ... says where"                grep -q "r3_spline_loop.ngc:7:" err.txt
+budget_case_ "r3: G81 L100000 in repeat [1e6]"  "max-moves" -- "$N" estimate r3_cycle_loop.ngc -m "$M" --no-removal
+budget_case_ "r3: 19.6 km at a 0.05 mm grid" "max-removal-work" -- "$N" annotate r3_helix.ngc -m "$M" --stock box:-60,-60,-5,60,60,0 --tool 1:flat:6 --grid 0.05 -o r3_budget.ngc
+check_ "r3: ... writes nothing"            test ! -e r3_budget.ngc
+cp r3_helix.ngc r3_helix_in_place.ngc
+case_ "r3: budget, --in-place"             5 "max_removal_work" -- "$N" annotate r3_helix_in_place.ngc -m "$M" --stock box:-60,-60,-5,60,60,0 --tool 1:flat:6 --grid 0.05 --in-place
+check_ "r3: ... the file is unchanged"     cmp -s r3_helix.ngc r3_helix_in_place.ngc
+fi
+
+# Control bytes in the names other printers show: calibrate's report, check-log's tables, doctor.
+esc_name="$(printf 'r3_\033]0;title\007\033[31m')"
+printf 'rpm,power_w\n1000,560\n2000,770\n3000,980\n4000,1195\n' > "${esc_name}.csv"
+case_ "r3: ESC in a table's name"          0 "" -- "$N" calibrate -m "$M" --spindle "${esc_name}.csv" -o r3_fit_esc.toml
+check_ "r3: ... escaped on stdout"         sh -c "! LC_ALL=C grep -qaP '[\x07\x1b]' out.txt"
+case_ "r3: ESC in the config's name"       0 "" -- env NCJOULE_CONFIG="$PWD/${esc_name}.toml" "$N" doctor
+check_ "r3: ... doctor escapes it"         sh -c "! LC_ALL=C grep -qaP '[\x07\x1b]' out.txt"

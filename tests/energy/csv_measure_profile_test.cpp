@@ -192,6 +192,27 @@ TEST_CASE("a calibrated profile keeps the base profile's [power] keys that fitti
   CHECK(back.power.zhou.fitted_mrr_max_mm3_s == doctest::Approx(40));
 }
 
+TEST_CASE("a table whose file name holds control bytes still makes a profile that loads") {
+  // The source names the files fitted: an ESC or a line break in a name is escaped in the TOML
+  // string (raw, TOML refuses it and the new profile would not load).
+  const std::string path = std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml";
+  std::ifstream in(path);
+  REQUIRE(in);
+  std::stringstream base;
+  base << in.rdbuf();
+  const MachineProfile original = parse_profile(base.str(), path);
+  std::vector<Diagnostic> problems;
+  const std::string name = "spindle\x1b]0;title\x07\nnext.csv";
+  // profile_with_power loads what it wrote: a profile that would not load is a diagnostic.
+  const auto text = profile_with_power(base.str(), path, "fitted", original.power, {},
+                                       "ncjoule calibrate: " + name, problems);
+  REQUIRE(text);
+  CHECK(problems.empty());
+  CHECK(text->find('\x1b') == std::string::npos);
+  CHECK(text->find("spindle\\u001B]0;title\\u0007\\u000Anext.csv") != std::string::npos);
+  CHECK_NOTHROW(parse_profile(*text, "fitted.toml"));
+}
+
 TEST_CASE("a base profile that is not TOML is reported at its line and column") {
   std::vector<Diagnostic> problems;
   const auto text = profile_with_power("name = \"mill\"\nrapid = [1, 2\n", "mill.toml", "fitted",

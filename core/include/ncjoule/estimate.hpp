@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "ncjoule/budget.hpp"
 #include "ncjoule/energy.hpp"
 #include "ncjoule/gcode.hpp"
 #include "ncjoule/kinematics.hpp"
@@ -62,10 +63,17 @@ struct EstimateOptions {
   // The memory budget of the run is removal.memory_budget_bytes (0: default_memory_budget_bytes):
   // the program's own memory (estimated_program_memory) is taken out of it first, and the stock
   // model gets the rest.
-  // Bounds on what the program may make the interpreter do (gcode.hpp).
-  InterpreterLimits limits;
+  // Bounds on what the program may make the interpreter do (gcode.hpp); its max_commands is the
+  // budget of moves (budget.hpp).
+  InterpreterLimits limits{.max_commands = kDefaultMaxMoves};
   // Path samples of one move at most (PlanOptions::max_samples_per_move).
   std::size_t max_samples_per_move = 100'000;
+  // The work budgets besides the one of moves (budget.hpp; 0: none): the path samples the
+  // planner makes for the whole program, and the removal work, in grid columns under the tool
+  // summed over its steps (each step's length plus the tool's diameter, times the diameter, over
+  // a cell's area; counted before the step is cut).
+  std::size_t max_path_samples = kDefaultMaxPathSamples;
+  double max_removal_work = kDefaultMaxColumnVisits;
   // Moves the planner gathers before it looks ahead (PlanOptions::look_ahead_batch).
   std::size_t look_ahead_batch = 64;
   // The interpreter, the planner and the folding of results (removal, energy) run at once, each
@@ -299,6 +307,8 @@ struct Estimate {
   std::size_t diagnostics_dropped = 0; // beyond the cap on diagnostics
   bool failed = false;                 // an error made the numbers meaningless (see diagnostics)
   bool removal_failed = false;         // ... and it was the material removal stage's
+  // ... and it was a work budget's (budget.hpp): the run was stopped, the program may be fine.
+  bool budget_exceeded = false;
 };
 
 // The memory (bytes) the pipeline holds for a program of `bytes` bytes in `lines` lines besides

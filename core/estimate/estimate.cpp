@@ -494,6 +494,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
           planner_diagnostics = planner.take_diagnostics();
         },
         [&](Timed& t) {
+          if (options.keep_commands) options.keep_commands->push_back(t.command);
           folder.take(t.command, std::move(t.timed));
           ++streamed;
         });

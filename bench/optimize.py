@@ -24,7 +24,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 GENERIC = os.path.join(ROOT, "samples/machines/generic-3axis.toml")
 # What the stock readers take from a header (docs/stock.md), searched in the first 1000 lines.
-CAM_STOCK = re.compile(r"stockMin|WORKPIECE\(|STOCK/BLOCK|Material Size|\(\s*STOCK\b", re.I)
+CAM_STOCK = re.compile(r"stockMin|WORKPIECE\(|STOCK/BLOCK|Material Size|\(\s*STOCK(\s+SIZE)?:?\s*[\d.]",
+                       re.I)
 
 
 def known_rows(corpus):

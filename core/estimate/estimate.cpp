@@ -504,6 +504,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
         },
         [&](Timed& t) {
           work_budget.count(t.command, t.timed); // before removal cuts it
+          if (options.keep_commands) options.keep_commands->push_back(t.command);
           folder.take(t.command, std::move(t.timed));
           ++streamed;
         });

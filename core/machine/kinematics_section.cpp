@@ -63,6 +63,8 @@ Kinematics read_kinematics(TableReader t, std::vector<std::string>& sources) {
   k.placeholder_rates = t.optional_boolean("placeholder_rates").value_or(false);
   k.tool_change_s = t.quantity("tool_change", Dimension::Time, Range::NonNegative);
   k.spindle_waits = t.optional_boolean("spindle_waits").value_or(true);
+  k.air_feed_mm_s =
+      t.optional_quantity("air_feed", Dimension::Speed, Range::Positive).value_or(0.0);
   k.tool_change_first_extra_s =
       t.optional_quantity("tool_change_first_extra", Dimension::Time, Range::NonNegative)
           .value_or(0.0);

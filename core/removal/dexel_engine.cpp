@@ -62,6 +62,35 @@ public:
     return false;
   }
 
+  std::optional<bool> material_above(const Point3& from, const Point3& to, double radius,
+                                     double z_floor) const override {
+    // A column counts when its centre lies within radius + half the cell's diagonal of the
+    // segment: every cell the inflated footprint touches, and a few it only comes near.
+    const double reach = radius + 0.5 * std::hypot(grid_.dx, grid_.dy);
+    const double x_lo = std::min(from.x(), to.x()) - reach,
+                 x_hi = std::max(from.x(), to.x()) + reach;
+    const double y_lo = std::min(from.y(), to.y()) - reach,
+                 y_hi = std::max(from.y(), to.y()) + reach;
+    const int i0 = std::max(0, detail::clamped_index(std::floor((x_lo - grid_.x0) / grid_.dx)));
+    const int i1 =
+        std::min(grid_.nx - 1, detail::clamped_index(std::floor((x_hi - grid_.x0) / grid_.dx)));
+    const int j0 = std::max(0, detail::clamped_index(std::floor((y_lo - grid_.y0) / grid_.dy)));
+    const int j1 =
+        std::min(grid_.ny - 1, detail::clamped_index(std::floor((y_hi - grid_.y0) / grid_.dy)));
+    const double ax = from.x(), ay = from.y();
+    const double ux = to.x() - ax, uy = to.y() - ay;
+    const double length2 = ux * ux + uy * uy;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t c = std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i);
+        if (!(top_[c] > z_floor)) continue;
+        const double px = grid_.column_x(i) - ax, py = grid_.column_y(j) - ay;
+        const double u = length2 > 0 ? std::clamp((px * ux + py * uy) / length2, 0.0, 1.0) : 0.0;
+        if (std::hypot(px - u * ux, py - u * uy) <= reach) return true;
+      }
+    return false;
+  }
+
   double material_volume_mm3() const override {
     double length = 0;
     for (std::size_t c = 0; c < count_.size(); ++c)

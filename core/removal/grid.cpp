@@ -22,6 +22,11 @@ GridFrame make_grid(const Box3& bounds, double spacing_mm) {
   return g;
 }
 
+std::optional<bool> RemovalEngine::material_above(const Point3&, const Point3&, double,
+                                                  double) const {
+  return std::nullopt;
+}
+
 void RemovalEngine::remove_steps(const std::vector<RemovalStep>& steps,
                                  std::vector<double>& volumes, std::vector<double>* cut_tops) {
   volumes.resize(steps.size());

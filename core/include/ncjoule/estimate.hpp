@@ -60,6 +60,10 @@ struct EstimateOptions {
   // Keep the operating trace of the whole program in Estimate::trace (calibration needs it;
   // memory grows with the program).
   bool keep_trace = false;
+  // When set, every canonical command as removal reads it (program coordinates, mm; machine
+  // positions placed), in program order, is appended here: what optimize replays. Memory grows
+  // with the program.
+  std::vector<CanonCommand>* keep_commands = nullptr;
   // The memory budget of the run is removal.memory_budget_bytes (0: default_memory_budget_bytes):
   // the program's own memory (estimated_program_memory) is taken out of it first, and the stock
   // model gets the rest.

@@ -109,6 +109,9 @@ struct Kinematics {
   // has a constant-torque range, then a constant-power one where each rpm takes longer).
   std::vector<std::pair<double, double>> spindle_run_up, spindle_run_down;
   ZDirection z_positive = ZDirection::Auto; // removal only: times do not depend on it
+  // The feed `ncjoule optimize` gives feed moves that run in air (air_feed_mm_min); 0: the
+  // machine's highest feed. Capped by each axis's max_feed along the move.
+  double air_feed_mm_s = 0;
 };
 
 // Pavanaskar Eq. 3.12 constants (per machine, per axis). Units: W, W/(mm/s), W/rpm, W/(mm^3/s).

@@ -444,6 +444,13 @@ public:
   virtual double material_volume_mm3() const = 0; // what is left
   // Whether there is material at the point (in the column under it, at its height).
   virtual bool material_at(const Point3& point) const = 0;
+  // Whether any material lies above `z_floor` in a column whose cell comes within `radius` (in
+  // X and Y) of the segment from `from` to `to`: a conservative test of whether the space a move
+  // sweeps, inflated by a clearance, is clear (optimize.hpp). Columns are taken whole: a cell
+  // that only touches the inflated footprint counts. std::nullopt where the engine cannot say
+  // (the voxel engine: optimize uses the dexel engine).
+  virtual std::optional<bool> material_above(const Point3& from, const Point3& to, double radius,
+                                             double z_floor) const;
   virtual std::size_t memory_bytes() const = 0;
   virtual const GridFrame& grid() const = 0;
   virtual const EngineStats& stats() const = 0;

@@ -1,0 +1,114 @@
+// ncjoule: a faster program from a posted one, never touching what cuts (docs/optimize.md).
+//
+// The program's moves are replayed in order on a fresh dexel model of a known stock. Before each
+// feed move removes anything, the space it sweeps, inflated by the tool's radius plus a margin,
+// is asked whether it holds material; a move that is clear of it by that margin is changed by
+// one of the rules below, each its own switch:
+//  - air feeds: a clear feed move runs at the air feed (the profile's air_feed, else the
+//    machine's highest feed), capped along the move by each axis's max_feed;
+//  - rapid links: a clear feed move that does not descend (a retract, a link at one height)
+//    becomes G0 where the rapid's own path (the dog-leg shape the planner gives the machine's
+//    rapids, sampled) is clear by the margin as well. A move that descends is never a rapid.
+// Only simple blocks change (G0/G1, X, Y, Z, F and N words, in the main program, run once, at a
+// feed per minute); everything else is copied byte for byte. What the changes leave different in
+// the modal state (a raised F, G0 in place of G1) is put back in a block of its own right after
+// the changed block, where a later block relies on it (a G1 goes on the block that relies on it
+// where that block is simple).
+//
+// The clearance of a clear move holds all along it: the tool reaches any material only after a
+// margin of travel in the next (unchanged) move, so the last margin before every cut entry runs
+// at the original feed, and no tool enters material differently.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ncjoule/gcode.hpp"
+#include "ncjoule/machine.hpp"
+#include "ncjoule/removal.hpp"
+#include "ncjoule/tool.hpp"
+
+namespace ncjoule {
+
+struct OptimizeOptions {
+  bool air_feeds = true;   // rule a: clear feed moves at the air feed
+  bool rapid_links = true; // rule b: clear retracts and links as G0
+  // The clearance beyond the tool's radius (mm), and below its lowest tip Z; raised to two grid
+  // cells where the grid is coarser.
+  double margin_mm = 1.0;
+  // The air feed (mm/min); 0: the machine's (Kinematics::air_feed_mm_s, else its highest
+  // max_feed). Always capped by each axis's max_feed along the move.
+  double air_feed_mm_min = 0;
+};
+
+enum class EditRule : std::uint8_t {
+  AirFeed,   // F raised
+  RapidLink, // G1 turned into G0
+  RestoreG1, // a block that moved on the modal G1 after a changed block writes G1 itself
+};
+const char* edit_rule_name(EditRule rule); // "air", "rapid", "restore"
+
+// One changed block.
+struct BlockEdit {
+  int line = 0; // 0-based source line
+  EditRule rule = EditRule::AirFeed;
+  double feed_mm_min = 0;       // AirFeed: the new feed
+  double was_feed_mm_min = 0;   // the feed the move ran at (mm/min)
+  bool has_f_word = false;      // the block writes its own F
+  bool has_motion_word = false; // the block writes its own G1
+  // A block of its own right after this one puts back what a later block relies on: the
+  // original F (restore_feed_mm_min) and/or G1.
+  bool restore_feed = false;
+  double restore_feed_mm_min = 0;
+  bool restore_g1 = false;
+  // AirFeed: the block moved on the modal G1 that an earlier change turned G0: it writes G1.
+  bool insert_g1 = false;
+};
+
+struct OptimizePlan {
+  std::vector<BlockEdit> edits;       // by line, rising
+  double margin_mm = 0;               // as used (after the grid's floor)
+  double air_feed_mm_min = 0;         // before each move's axis caps
+  std::size_t feed_moves = 0;         // feed moves replayed
+  std::size_t clear_moves = 0;        // of them, clear of the stock by the margin
+  std::size_t simple_clear_moves = 0; // of those, in blocks that may change
+  // Changes left out because the marked block would pass the dialect's line length.
+  std::size_t too_long = 0;
+  bool inch = false; // the program writes inches (its feeds in in/min)
+};
+
+// What the plan is made from.
+struct OptimizeInput {
+  const SourceFile* source = nullptr;
+  Dialect dialect;
+  // The program's commands as removal reads them (EstimateOptions::keep_commands), in order.
+  const std::vector<CanonCommand>* commands = nullptr;
+  const std::map<int, Tool>* tools = nullptr; // by the number moves carry
+  const StockShape* stock = nullptr;          // the known stock, program coordinates (mm)
+  GridFrame grid;                             // the grid it is modelled on
+  Kinematics kinematics;                      // max feeds, rapid shape and rates
+};
+
+// The changes, by source line. Throws std::invalid_argument when the input is incomplete.
+OptimizePlan plan_optimization(const OptimizeInput& input, const OptimizeOptions& options = {});
+
+// The program with the plan applied: every line not changed copied byte for byte; each changed
+// block carries a mark comment in the dialect's comment syntax ("(NCJOPT AIR F5000. WAS F500.)",
+// "(NCJOPT RAPID WAS G1)"), the restore blocks one of their own ("(NCJOPT RESTORE)"), and a
+// header after the program's leading lines lists the changes and their rules. Numbers are in the
+// program's units (plan.inch: in/min), always with a decimal point. ncjoule strip leaves the marks.
+struct OptimizedText {
+  std::string text;
+  std::size_t changed_blocks = 0;
+  std::size_t restore_blocks = 0;
+};
+OptimizedText write_optimized(const SourceFile& source, const Dialect& dialect,
+                              const OptimizePlan& plan);
+
+// The mark every line optimize writes carries ("NCJOPT"): distinct from annotate's "NCJ ..."
+// comments, which strip removes.
+inline constexpr const char* kOptimizeMark = "NCJOPT";
+
+} // namespace ncjoule

@@ -210,6 +210,10 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   result.machine_cost = result.duration_s / 3600 * result.machine_rate_per_hour;
   result.cost = result.electricity_cost + result.machine_cost;
   result.currency = options_.currency.value_or(constants_.currency);
+  if (options_.price_per_kwh && !options_.price_from.empty())
+    result.price_from = options_.price_from;
+  if (options_.machine_rate_per_hour && !options_.rate_from.empty())
+    result.rate_from = options_.rate_from;
   if (over_max_line_ >= 0) {
     char text[400];
     std::snprintf(text, sizeof text,
@@ -325,6 +329,8 @@ EnergyResult integrate_energy(const std::vector<OperatingSegment>& trace, const 
   result.machine_cost = totals.machine_cost;
   result.machine_rate_per_hour = totals.machine_rate_per_hour;
   result.currency = totals.currency;
+  result.price_from = totals.price_from;
+  result.rate_from = totals.rate_from;
   result.model_description = totals.model_description;
   return result;
 }

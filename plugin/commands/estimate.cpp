@@ -24,6 +24,7 @@
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
 #include "progress.hpp"
+#include "setting_sources.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -34,6 +35,7 @@ struct EstimateCliOptions {
   bool json = false;
   bool json_compact = false;
   bool csv = false;
+  bool show_settings = false;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -152,10 +154,19 @@ void print_operations(const Estimate& e) {
 
 int run_estimate(const EstimateCliOptions& o) {
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
-  if (!options) return status;
   MachineProfile machine;
-  if (!load_machine(o.settings, machine, o.file)) return kInputError;
+  std::string machine_from;
+  if (!load_machine(o.settings, machine, o.file, &machine_from)) return kInputError;
+  if (o.show_settings) {
+    const std::optional<ResolvedSettings> settings =
+        settings_for(o.settings, o.file, machine, status);
+    if (!settings) return status;
+    print_settings(o.file, machine, machine_from, *settings);
+    return kOk;
+  }
+  const std::optional<EstimateOptions> options =
+      estimate_options(o.settings, o.file, machine, status);
+  if (!options) return status;
   auto source = read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!source) return kInputError;
 
@@ -229,6 +240,11 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   json_compact->excludes(json);
   cmd->add_flag("--csv", options->csv,
                 "Print one CSV row per block, with a header row (docs/report.md)")
+      ->excludes(json)
+      ->excludes(json_compact);
+  cmd->add_flag("--show-settings", options->show_settings,
+                "Print every setting (machine, material, prices, dialect, tool table, each value "
+                "of the profile) with where it came from, and estimate nothing")
       ->excludes(json)
       ->excludes(json_compact);
   cmd->callback([options, &exit_code] { exit_code = run_estimate(*options); });

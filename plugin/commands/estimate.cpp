@@ -56,6 +56,22 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
       "  dialect     %s\n",
       printable(describe_dialect_choice({e.dialect, e.dialect_origin, e.dialect_reason})).c_str());
   std::printf("  model       %s\n", energy.model_description.c_str());
+  if (!machine.estimated.empty()) {
+    // A class profile: the reader must know which figures are no measurement of a machine.
+    std::string what;
+    for (std::size_t k = 0; k < machine.estimated.size(); ++k)
+      what += (k == 0                              ? ""
+               : k + 1 == machine.estimated.size() ? " and "
+                                                   : ", ") +
+              machine.estimated[k];
+    std::printf("  estimated   this profile's %s are estimates for its class of machine, not "
+                "measured on one: the %s figures below are approximate (ncjoule calibrate "
+                "measures yours)\n",
+                what.c_str(),
+                machine.estimated.size() == 1 && machine.estimated[0] == "power"
+                    ? "energy and power"
+                    : "time, energy and power");
+  }
   std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(e.time_s).c_str(), e.time_s,
               e.lines.size());
   std::printf("  rapids      %s\n", clock_text(t.rapid_s).c_str());

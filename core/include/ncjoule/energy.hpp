@@ -319,6 +319,7 @@ private:
   int stopped_cut_line_ = -1;
   std::size_t stopped_cuts_ = 0;
   double stopped_cut_rpm_ = 0;
+  bool stopped_cut_at_s0_ = false; // the first such cut had M3/M4 in force, at S0
 };
 
 // Integrates power over every step of every command (trapezoid rule, MRR per step = step

@@ -75,8 +75,7 @@ std::string svg_toolpath(const std::string& id, const std::string& title,
     std::size_t end = k + 1;
     for (; end < path.size(); ++end) {
       const PathPoint& b = path[end];
-      if (b.rapid != first.rapid || (!b.rapid && scale_color(b.power_w, low, high) != color))
-        break;
+      if (b.rapid != first.rapid || (!b.rapid && scale_color(b.power_w, low, high) != color)) break;
       first_line = std::min(first_line, b.line);
       last_line = std::max(last_line, b.line);
       power_low = std::min(power_low, double(b.power_w));
@@ -87,20 +86,18 @@ std::string svg_toolpath(const std::string& id, const std::string& title,
       d += " " + x + " " + y; // further points of the L command
       last_x = std::move(x), last_y = std::move(y);
     }
-    const std::string lines = first_line == last_line
-                                  ? "line " + std::to_string(first_line + 1)
-                                  : "lines " + std::to_string(first_line + 1) + "-" +
-                                        std::to_string(last_line + 1);
-    const std::string power = power_text(power_low) +
-                              (power_text(power_high) != power_text(power_low)
-                                   ? " to " + power_text(power_high)
-                                   : std::string());
-    const std::string tip = lines + (first.rapid ? ": rapid" : ": feed") + ", " + power +
-                            (mrr > 0 ? ", MRR up to " + format_number(mrr, 1) + " mm\u00b3/s"
+    const std::string lines = first_line == last_line ? "line " + std::to_string(first_line + 1)
+                                                      : "lines " + std::to_string(first_line + 1) +
+                                                            "-" + std::to_string(last_line + 1);
+    const std::string power =
+        power_text(power_low) + (power_text(power_high) != power_text(power_low)
+                                     ? " to " + power_text(power_high)
                                      : std::string());
-    html += first.rapid ? "<path class=\"rapid\" data-line=\"" +
-                              std::to_string(first_line + 1) + "\" d=\"" + d + "\"><title>" +
-                              html_escaped(tip) + "</title></path>"
+    const std::string tip =
+        lines + (first.rapid ? ": rapid" : ": feed") + ", " + power +
+        (mrr > 0 ? ", MRR up to " + format_number(mrr, 1) + " mm\u00b3/s" : std::string());
+    html += first.rapid ? "<path class=\"rapid\" data-line=\"" + std::to_string(first_line + 1) +
+                              "\" d=\"" + d + "\"><title>" + html_escaped(tip) + "</title></path>"
                         : "<path class=\"feed\" data-line=\"" + std::to_string(first_line + 1) +
                               "\" stroke=\"" + color + "\" d=\"" + d + "\"><title>" +
                               html_escaped(tip) + "</title></path>";

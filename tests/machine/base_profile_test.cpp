@@ -59,7 +59,8 @@ TEST_CASE("a profile on a shipped base changes only the keys it gives") {
   CHECK(m.values.at("kinematics.x.rapid_mm_min").text == "5000");
 }
 
-TEST_CASE("a base beside the profile comes before a shipped one of the same name; bases chain") {
+TEST_CASE(
+    "a base beside the profile comes before a shipped one of the same name, and bases chain") {
   Folder f("beside");
   f.write("generic-3axis.toml", "base = \"" + kSamples +
                                     "/generic-3axis.toml\"\n"

@@ -12,6 +12,7 @@
 #include "ncjoule/projects.hpp"
 #include "ncjoule/text.hpp"
 #include "ncjoule/text_file.hpp"
+#include "setting_sources.hpp"
 #include "user_config.hpp"
 
 namespace ncjoule::cli {
@@ -135,7 +136,8 @@ void add_estimate_settings(CLI::App& cmd, EstimateSettings& s) {
       ->check(finite_between(0, 1e7));
 }
 
-bool load_machine(const EstimateSettings& s, MachineProfile& machine, const std::string& program) {
+bool load_machine(const EstimateSettings& s, MachineProfile& machine, const std::string& program,
+                  std::string* from) {
   const auto& config = user_config();
   if (!config) return false;
   // The job's machine comes between the command line's and the user config's, as its stock does.
@@ -161,8 +163,14 @@ bool load_machine(const EstimateSettings& s, MachineProfile& machine, const std:
               << "); give yours with --machine or machine = \"...\" in " << user_config_path()
               << "\n";
   }
+  if (from)
+    *from = !s.machine.empty() ? "command line (--machine)"
+            : !job_machine.empty()
+                ? "job file " + (!s.job.empty() ? s.job : program_job_file(program))
+            : !config->machine.empty() ? "user config " + config->path
+                                       : "default (none named)";
   try {
-    machine = load_profile(path);
+    machine = load_profile(path, machine_profile_dirs());
     machine.by_default = s.machine.empty() && job_machine.empty() && config->machine.empty();
     return true;
   } catch (const ProfileError& e) {
@@ -192,11 +200,6 @@ std::size_t input_limit_bytes(const EstimateSettings& s) {
 std::optional<EstimateSettings> completed(EstimateSettings s, const std::string& program) {
   const auto& config = user_config();
   if (!config) return std::nullopt;
-  if (s.dialect.empty()) s.dialect = config->dialect;
-  if (s.tool_table.empty()) {
-    s.tool_table = config->tool_table;
-    if (s.tool_units.empty()) s.tool_units = config->tool_units;
-  }
   if (s.job.empty()) s.job = program_job_file(program);
   if (s.stock.empty()) {
     if (const std::string file = program_stock_file(program); !file.empty()) {
@@ -220,38 +223,56 @@ std::optional<EstimateSettings> completed(EstimateSettings s, const std::string&
                             : (std::filesystem::path(file).parent_path() / line).string();
     }
   }
-  // The shop's costs, where the command line gave none.
-  if (!s.price_per_kwh) s.price_per_kwh = config->price_per_kwh;
-  if (!s.machine_rate_per_hour) s.machine_rate_per_hour = config->machine_rate_per_hour;
-  if (!s.co2_kg_per_kwh) s.co2_kg_per_kwh = config->co2_kg_per_kwh;
+  // The work budgets, where the command line gave none (the costs are resolve_settings').
   if (!s.max_moves) s.max_moves = config->max_moves;
   if (!s.max_path_samples) s.max_path_samples = config->max_path_samples;
   if (!s.max_removal_work) s.max_removal_work = config->max_removal_work;
-  if (s.currency.empty()) s.currency = config->currency;
   s.config_stock = config->stock;
   s.config_stock_origin = config->stock_origin;
-  s.config_material = config->material;
   return s;
 }
 
+std::optional<ResolvedSettings> settings_for(const EstimateSettings& given,
+                                             const std::string& program,
+                                             const MachineProfile& machine, int& exit_code) {
+  const std::optional<EstimateSettings> settings = completed(given, program);
+  if (!settings) return exit_code = kInputError, std::nullopt;
+  std::string job_material;
+  if (!settings->job.empty()) {
+    std::vector<Diagnostic> ignored; // estimate_options reads the job again and reports
+    if (const auto job = read_job_file(settings->job, ignored)) job_material = job->material;
+  }
+  return resolve_settings(*settings, *user_config(), machine, settings->job, job_material);
+}
+
 std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
-                                                const std::string& program, int& exit_code) {
+                                                const std::string& program,
+                                                const MachineProfile& machine, int& exit_code) {
   const std::optional<EstimateSettings> settings = completed(given, program);
   if (!settings) return exit_code = kInputError, std::nullopt;
   const EstimateSettings& s = *settings;
   EstimateOptions options;
-  if (s.dialect == "auto") {
+  std::optional<JobFile> job;
+  if (!s.job.empty()) {
+    std::vector<Diagnostic> job_diagnostics;
+    job = read_job_file(s.job, job_diagnostics);
+    print_diagnostics(job_diagnostics);
+    if (!job) return exit_code = kInputError, std::nullopt;
+  }
+  const ResolvedSettings r =
+      resolve_settings(s, *user_config(), machine, s.job, job ? job->material : std::string());
+  if (r.dialect == "auto") {
     options.detect_dialect = true;
-  } else if (!s.dialect.empty()) {
-    options.dialect = dialect_from_option(s.dialect);
+  } else if (!r.dialect.empty()) {
+    options.dialect = dialect_from_option(r.dialect);
     if (!options.dialect) return exit_code = kUsage, std::nullopt;
   }
-  if (!s.tool_table.empty()) {
-    const auto table = read_source(s.tool_table, kMaxSettingsFileBytes);
+  if (!r.tool_table.empty()) {
+    const auto table = read_source(r.tool_table, kMaxSettingsFileBytes);
     if (!table) return exit_code = kInputError, std::nullopt;
     std::vector<Diagnostic> diagnostics;
-    options.tool_table = parse_tool_table(*table, s.tool_units == "inch", diagnostics);
-    options.tool_table_path = s.tool_table;
+    options.tool_table = parse_tool_table(*table, r.tool_units == "inch", diagnostics);
+    options.tool_table_path = r.tool_table;
     print_diagnostics(diagnostics);
     for (const Diagnostic& d : diagnostics)
       if (d.severity == Severity::Error) return exit_code = kInputError, std::nullopt;
@@ -265,20 +286,15 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
     std::cerr << '\n';
     return exit_code = kUsage, std::nullopt;
   }
-  if (!s.job.empty()) {
-    std::vector<Diagnostic> job_diagnostics;
-    const auto job = read_job_file(s.job, job_diagnostics);
-    print_diagnostics(job_diagnostics);
-    if (!job) return exit_code = kInputError, std::nullopt;
+  if (job) {
     if (job->stock) options.stock = job->stock;
     options.setup_stocks = job->setup_stocks;
     options.work_offsets = job->work_offsets;
     options.cutter_compensation = job->cutter_compensation;
     options.tools = job->tools;
-    options.material = job->material;
   }
-  if (!s.material.empty()) options.material = s.material;
-  if (options.material.empty()) options.material = s.config_material;
+  options.material = r.material; // empty: the profile's own
+
   // Stock: --stock, the job file's, PROGRAM.stock, a CAM project beside the program, the user
   // config's; the program's own comments come after them all (estimate.cpp). docs/stock.md.
   if (!s.stock_from.empty() && s.stock.empty()) {
@@ -333,10 +349,14 @@ std::optional<EstimateOptions> estimate_options(const EstimateSettings& given,
   if (s.max_moves) options.limits.max_commands = std::size_t(*s.max_moves);
   if (s.max_path_samples) options.max_path_samples = std::size_t(*s.max_path_samples);
   if (s.max_removal_work) options.max_removal_work = *s.max_removal_work;
-  options.energy.co2_kg_per_kwh = s.co2_kg_per_kwh;
-  options.energy.price_per_kwh = s.price_per_kwh;
-  options.energy.machine_rate_per_hour = s.machine_rate_per_hour;
-  if (!s.currency.empty()) options.energy.currency = s.currency;
+  options.energy.co2_kg_per_kwh = r.co2_kg_per_kwh;
+  options.energy.price_per_kwh = r.price_per_kwh;
+  options.energy.machine_rate_per_hour = r.machine_rate_per_hour;
+  if (!r.currency.empty()) options.energy.currency = r.currency;
+  for (const SourcedSetting& shown : r.shown) {
+    if (shown.name == "price_per_kwh") options.energy.price_from = shown.from;
+    if (shown.name == "machine_rate_per_hour") options.energy.rate_from = shown.from;
+  }
   return options;
 }
 

@@ -35,7 +35,7 @@ struct EstimateSettings {
   std::optional<double> co2_kg_per_kwh, price_per_kwh, machine_rate_per_hour;
   std::string currency; // of the price and the rate; empty: the profile's
   // Filled in by estimate_options from the program's .stock file and the user config.
-  std::string program_stock, config_stock, config_material;
+  std::string program_stock, config_stock;
   TextOrigin program_stock_origin, config_stock_origin; // where those two stocks are written
 };
 
@@ -52,8 +52,9 @@ std::size_t input_limit_bytes(const EstimateSettings& settings);
 // Loads the machine profile: --machine, else the one the job file of `program` names (--job, or
 // PROGRAM.ncjoule.toml), else the user config's, else the generic one (with a note); prints why
 // and returns false when it is wrong.
+// `from`, when given, receives where the machine was named.
 bool load_machine(const EstimateSettings& settings, MachineProfile& machine,
-                  const std::string& program = "");
+                  const std::string& program = "", std::string* from = nullptr);
 
 // The pipeline's options for one program ("-": standard input) from the settings, completed from
 // the program's own files and the user config (user_config.hpp). Tools: the job file's, then the
@@ -62,7 +63,10 @@ bool load_machine(const EstimateSettings& settings, MachineProfile& machine,
 // Stock: --stock, the job file's, PROGRAM.stock, a project beside the program, the user config's
 // (docs/stock.md). On a bad setting it
 // prints why, sets `exit_code` and returns nullopt.
+// The machine (load_machine) decides which section of the user config applies and which of its
+// own values win (setting_sources.hpp).
 std::optional<EstimateOptions> estimate_options(const EstimateSettings& settings,
-                                                const std::string& program, int& exit_code);
+                                                const std::string& program,
+                                                const MachineProfile& machine, int& exit_code);
 
 } // namespace ncjoule::cli

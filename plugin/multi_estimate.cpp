@@ -20,7 +20,7 @@ int estimate_files(const std::vector<std::string>& files, const EstimateSettings
   std::vector<SourceFile> sources;
   std::vector<EstimateOptions> options;
   for (const std::string& file : files) {
-    auto these = estimate_options(s, file, status);
+    auto these = estimate_options(s, file, machine, status);
     if (!these) return status;
     options.push_back(std::move(*these));
     auto source = read_source(file, input_limit_bytes(s), memory_budget_bytes(s));

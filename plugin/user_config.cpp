@@ -62,6 +62,140 @@ std::string user_config_path() {
 #endif
 }
 
+namespace {
+
+// The keys a machine's section takes; the top takes these and machine, stock and
+// override_profiles.
+constexpr const char* kSectionKeys = "material, tool_table, tool_units, dialect, price_per_kwh, "
+                                     "machine_rate_per_hour, currency, co2_kg_per_kwh";
+
+// Reads one key of `table` into `out` when it is a setting of ConfigSettings; false when the key
+// is none of them. Errors go to `diagnostics` and set `failed`.
+bool read_setting(const std::string& name, const toml::node& node, const std::string& path,
+                  ConfigSettings& out, std::vector<Diagnostic>& diagnostics, bool& failed) {
+  const auto where = node.source().begin;
+  struct Key {
+    const char* name;
+    std::string ConfigSettings::*field;
+    bool is_path;
+  };
+  static const Key keys[] = {{"material", &ConfigSettings::material, false},
+                             {"tool_table", &ConfigSettings::tool_table, true},
+                             {"tool_units", &ConfigSettings::tool_units, false},
+                             {"dialect", &ConfigSettings::dialect, false},
+                             {"currency", &ConfigSettings::currency, false}};
+  // The shop's costs, numbers with the range the command line's options take.
+  struct NumberKey {
+    const char* name;
+    std::optional<double> ConfigSettings::*field;
+    double max;
+  };
+  static const NumberKey number_keys[] = {
+      {"price_per_kwh", &ConfigSettings::price_per_kwh, 1e6},
+      {"machine_rate_per_hour", &ConfigSettings::machine_rate_per_hour, 1e7},
+      {"co2_kg_per_kwh", &ConfigSettings::co2_kg_per_kwh, 100}};
+  for (const NumberKey& k : number_keys) {
+    if (name != k.name) continue;
+    const std::optional<double> value = node.value<double>(); // an integer is taken too
+    if (!value || !std::isfinite(*value) || *value < 0 || *value > k.max) {
+      char text[160];
+      std::snprintf(text, sizeof text, "%s: must be a number from 0 to %g", k.name, k.max);
+      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column), text});
+      failed = true;
+    } else {
+      out.*(k.field) = *value;
+    }
+    return true;
+  }
+  for (const Key& k : keys) {
+    if (name != k.name) continue;
+    if (!node.is_string() || node.value<std::string>()->empty()) {
+      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                             std::string(k.name) + ": must be a non-empty string"});
+      failed = true;
+      return true;
+    }
+    std::string value = *node.value<std::string>();
+    if (k.field == &ConfigSettings::tool_units && value != "mm" && value != "inch") {
+      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                             "tool_units: must be \"mm\" or \"inch\""});
+      failed = true;
+      return true;
+    }
+    out.*(k.field) = k.is_path ? relative_to(path, value) : value;
+    return true;
+  }
+  return false;
+}
+
+// The work budgets, shop-wide only: numbers from 1 with the range the command line's options
+// take. False when the key is none of them.
+bool read_budget(const std::string& name, const toml::node& node, const std::string& path,
+                 UserConfig& config, std::vector<Diagnostic>& diagnostics, bool& failed) {
+  struct BudgetKey {
+    const char* name;
+    std::optional<double> UserConfig::*field;
+    double max;
+  };
+  static const BudgetKey keys[] = {{"max_moves", &UserConfig::max_moves, 1e15},
+                                   {"max_path_samples", &UserConfig::max_path_samples, 1e15},
+                                   {"max_removal_work", &UserConfig::max_removal_work, 1e18}};
+  for (const BudgetKey& k : keys) {
+    if (name != k.name) continue;
+    const std::optional<double> value = node.value<double>(); // an integer is taken too
+    if (!value || !std::isfinite(*value) || *value < 1 || *value > k.max) {
+      const auto where = node.source().begin;
+      char text[160];
+      std::snprintf(text, sizeof text, "%s: must be a number from 1 to %g", k.name, k.max);
+      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column), text});
+      failed = true;
+    } else {
+      config.*(k.field) = *value;
+    }
+    return true;
+  }
+  return false;
+}
+
+// The [machines."NAME"] sections.
+void read_machine_sections(const toml::node& node, const std::string& path, UserConfig& config,
+                           std::vector<Diagnostic>& diagnostics, bool& failed) {
+  const auto where = node.source().begin;
+  const toml::table* sections = node.as_table();
+  if (!sections) {
+    diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                           "machines: must be tables, one per machine: [machines.\"haas-vf2\"]"});
+    failed = true;
+    return;
+  }
+  for (const auto& [name, section_node] : *sections) {
+    const auto at = section_node.source().begin;
+    const toml::table* section = section_node.as_table();
+    if (!section) {
+      diagnostics.push_back({Severity::Error, path, int(at.line), int(at.column),
+                             "machines." + std::string(name.str()) +
+                                 ": must be a table of that machine's settings (" + kSectionKeys +
+                                 ")"});
+      failed = true;
+      continue;
+    }
+    MachineSection machine;
+    machine.name = std::string(name.str());
+    machine.line = int(at.line);
+    for (const auto& [key, value] : *section)
+      if (!read_setting(std::string(key.str()), value, path, machine, diagnostics, failed)) {
+        const auto key_at = value.source().begin;
+        diagnostics.push_back({Severity::Warning, path, int(key_at.line), int(key_at.column),
+                               "machines." + machine.name + "." + std::string(key.str()) +
+                                   ": unknown key, ignored (a machine's section takes " +
+                                   kSectionKeys + ")"});
+      }
+    config.machines[to_lower(machine.name)] = std::move(machine);
+  }
+}
+
+} // namespace
+
 std::optional<UserConfig> parse_user_config(std::string_view text, const std::string& path,
                                             std::vector<Diagnostic>& diagnostics) {
   toml::table document;
@@ -76,89 +210,67 @@ std::optional<UserConfig> parse_user_config(std::string_view text, const std::st
   UserConfig config;
   config.path = path;
   bool failed = false;
-  struct Key {
-    const char* name;
-    std::string UserConfig::*field;
-    bool is_path;
-  };
-  static const Key keys[] = {
-      {"machine", &UserConfig::machine, true},       {"material", &UserConfig::material, false},
-      {"tool_table", &UserConfig::tool_table, true}, {"tool_units", &UserConfig::tool_units, false},
-      {"stock", &UserConfig::stock, false},          {"dialect", &UserConfig::dialect, false},
-      {"currency", &UserConfig::currency, false}};
-  // The shop's costs and the work budgets: numbers with the range the command line's options
-  // take (max, min).
-  struct NumberKey {
-    const char* name;
-    std::optional<double> UserConfig::*field;
-    double max, min;
-  };
-  static const NumberKey number_keys[] = {
-      {"price_per_kwh", &UserConfig::price_per_kwh, 1e6, 0},
-      {"machine_rate_per_hour", &UserConfig::machine_rate_per_hour, 1e7, 0},
-      {"co2_kg_per_kwh", &UserConfig::co2_kg_per_kwh, 100, 0},
-      {"max_moves", &UserConfig::max_moves, 1e15, 1},
-      {"max_path_samples", &UserConfig::max_path_samples, 1e15, 1},
-      {"max_removal_work", &UserConfig::max_removal_work, 1e18, 1}};
-  for (const auto& [name, node] : document) {
+  for (const auto& [key, node] : document) {
+    const std::string name(key.str());
     const auto where = node.source().begin;
-    const Key* key = nullptr;
-    for (const Key& k : keys)
-      if (name.str() == k.name) key = &k;
-    const NumberKey* number_key = nullptr;
-    for (const NumberKey& k : number_keys)
-      if (name.str() == k.name) number_key = &k;
-    if (number_key) {
-      const std::optional<double> value = node.value<double>(); // an integer is taken too
-      if (!value || !std::isfinite(*value) || *value < number_key->min ||
-          *value > number_key->max) {
-        char text[160];
-        std::snprintf(text, sizeof text, "%s: must be a number from %g to %g", number_key->name,
-                      number_key->min, number_key->max);
-        diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column), text});
-        failed = true;
-        continue;
-      }
-      config.*(number_key->field) = *value;
+    if (read_setting(name, node, path, config, diagnostics, failed)) continue;
+    if (name == "machines") {
+      read_machine_sections(node, path, config, diagnostics, failed);
       continue;
     }
-    if (!key) {
+    if (read_budget(name, node, path, config, diagnostics, failed)) continue;
+    if (name == "override_profiles") {
+      if (!node.is_boolean()) {
+        diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
+                               "override_profiles: must be true or false"});
+        failed = true;
+      } else {
+        config.override_profiles = *node.value<bool>();
+      }
+      continue;
+    }
+    if (name != "machine" && name != "stock") {
       diagnostics.push_back({Severity::Warning, path, int(where.line), int(where.column),
-                             std::string(name.str()) +
-                                 ": unknown key, ignored (known: machine, material, tool_table, "
-                                 "tool_units, stock, dialect, price_per_kwh, "
-                                 "machine_rate_per_hour, currency, co2_kg_per_kwh, "
-                                 "max_moves, max_path_samples, max_removal_work)"});
+                             name + ": unknown key, ignored (known: machine, stock, " +
+                                 kSectionKeys +
+                                 ", max_moves, max_path_samples, max_removal_work, "
+                                 "override_profiles, [machines.\"NAME\"])"});
       continue;
     }
     if (!node.is_string() || node.value<std::string>()->empty()) {
       diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
-                             std::string(key->name) + ": must be a non-empty string"});
+                             name + ": must be a non-empty string" +
+                                 (name == "machine" && node.is_table()
+                                      ? " (one machine's own settings go in [machines.\"NAME\"])"
+                                      : "")});
       failed = true;
       continue;
     }
     std::string value = *node.value<std::string>();
-    // A machine named by a shipped profile's name ("haas-vf2") stays a name for -m's lookup;
-    // a file beside the config, or a path, is a path.
-    const bool bare_name = key->field == &UserConfig::machine &&
-                           value.find_first_of("/\\") == std::string::npos &&
-                           !is_file(relative_to(path, value));
-    if (key->is_path && !bare_name) value = relative_to(path, value);
-    if (key->field == &UserConfig::stock) {
+    if (name == "machine") {
+      // A machine named by a shipped profile's name ("haas-vf2") stays a name for -m's lookup;
+      // a file beside the config, or a path, is a path.
+      const bool bare_name =
+          value.find_first_of("/\\") == std::string::npos && !is_file(relative_to(path, value));
+      config.machine = bare_name ? value : relative_to(path, value);
+    } else {
       // The value's first character is just after the opening quote.
       config.stock_origin = {path, int(where.line), int(where.column) + 1};
-      if (value.rfind("box:", 0) != 0) value = relative_to(path, value); // an STL file
+      config.stock = value.rfind("box:", 0) == 0 ? value : relative_to(path, value); // an STL
     }
-    if (key->field == &UserConfig::tool_units && value != "mm" && value != "inch") {
-      diagnostics.push_back({Severity::Error, path, int(where.line), int(where.column),
-                             "tool_units: must be \"mm\" or \"inch\""});
-      failed = true;
-      continue;
-    }
-    config.*(key->field) = value;
   }
   if (failed) return std::nullopt;
   return config;
+}
+
+const MachineSection* machine_section(const UserConfig& config, const std::string& profile_path,
+                                      const std::string& profile_name) {
+  if (config.machines.empty()) return nullptr;
+  const std::string stem = to_lower(utf8_from_path(path_from_utf8(profile_path).stem()));
+  if (auto it = config.machines.find(stem); it != config.machines.end()) return &it->second;
+  if (auto it = config.machines.find(to_lower(profile_name)); it != config.machines.end())
+    return &it->second;
+  return nullptr;
 }
 
 const std::optional<UserConfig>& user_config() {

@@ -14,11 +14,16 @@
 //       max_moves = 20000000             # the work budgets (--max-moves, --max-path-samples,
 //       max_path_samples = 100000000     # --max-removal-work): a run that passes one stops,
 //       max_removal_work = 2e10          # exit 5
+//       override_profiles = false        # true: the top's material and rate win over a profile's
+//       [machines."haas-vf2"]            # one machine's own: material, tool_table, tool_units,
+//       machine_rate_per_hour = 95       # dialect and the costs above
 //   PROGRAM.ncjoule.toml next to PROGRAM.nc: a job file (stock, material, [[tool]] entries)
 //   PROGRAM.stock next to PROGRAM.nc: one stock, as --stock takes it
 //
-// The command line wins over a program's own files, which win over the user config, which wins
-// over the machine profile.
+// Which wins (setting_sources.hpp): the command line, then a program's own files, then the
+// config's section for the machine, then the machine profile's own material and rate over the
+// config's shop-wide ones (unless override_profiles); the config's shop-wide electricity price,
+// CO2 and currency win over the profile's (the shop buys the electricity).
 #pragma once
 
 #include <map>
@@ -30,16 +35,35 @@
 
 namespace ncjoule::cli {
 
-struct UserConfig {
-  std::string path; // the file read; empty when there is none
-  std::string machine, material, tool_table, tool_units, stock, dialect, currency;
-  // The shop's costs: each overrides the machine profile's, and --price, --machine-rate and
-  // --co2 override them.
+// What a user config gives for estimating, shop-wide at its top or for one machine.
+struct ConfigSettings {
+  std::string material, tool_table, tool_units, dialect, currency;
+  // The shop's costs: --price, --machine-rate and --co2 override them.
   std::optional<double> price_per_kwh, machine_rate_per_hour, co2_kg_per_kwh;
-  // The work budgets; the command line's --max-moves, ... override them.
-  std::optional<double> max_moves, max_path_samples, max_removal_work;
-  TextOrigin stock_origin; // where `stock` is written, for its diagnostics
 };
+
+// A [machines."NAME"] section: the settings of the machine whose profile's file is NAME.toml
+// (or whose profile is named NAME), any case.
+struct MachineSection : ConfigSettings {
+  std::string name; // as written
+  int line = 0;     // of the section's header
+};
+
+struct UserConfig : ConfigSettings {
+  std::string path; // the file read; empty when there is none
+  std::string machine, stock;
+  TextOrigin stock_origin; // where `stock` is written, for its diagnostics
+  // The work budgets (shop-wide only); the command line's --max-moves, ... override them.
+  std::optional<double> max_moves, max_path_samples, max_removal_work;
+  // The top's material and machine rate win over a profile's own (not only fill in for it).
+  bool override_profiles = false;
+  std::map<std::string, MachineSection> machines; // by lower-case name
+};
+
+// The section of `config` for the profile read from `profile_path` named `profile_name`: by the
+// file's stem, else by the profile's name (any case); null when there is none.
+const MachineSection* machine_section(const UserConfig& config, const std::string& profile_path,
+                                      const std::string& profile_name);
 
 // Where the user config is looked for (whether or not it exists).
 std::string user_config_path();

@@ -234,10 +234,38 @@ Group constants(const PowerConstants& power) {
   return g;
 }
 
+// Notation a person reads as words where a comment cannot carry its marks: a model's formula by
+// what it is, a unit's ratio as "per" ("c3*n^c4*MRR" would read "c3 nc4 MRR", "mm^3/s" "mm3-s").
+std::string in_words(std::string_view text) {
+  static const std::pair<std::string_view, std::string_view> kWords[] = {
+      {"cutting term c3*n^c4*MRR", "cutting term"},
+      {"c3*n^c4*MRR", "cutting term"},
+      {"line c1 + c2*n", "line"},
+      {"c1 + c2*n", "idle line"},
+      {"J/mm^3", "J per mm3"},
+      {"J/in^3", "J per in3"},
+      {"mm^3/s", "mm3 per s"},
+      {"in^3/min", "in3 per min"},
+      {"mm/min", "mm per min"},
+      {"in/min", "in per min"},
+      {"mm^3", "mm3"},
+      {"in^3", "in3"},
+      {"W/rpm", "W per rpm"},
+      {"kW/rpm", "kW per rpm"}};
+  std::string out(text);
+  for (const auto& [mark, words] : kWords)
+    for (std::size_t at = out.find(mark); at != std::string::npos;
+         at = out.find(mark, at + words.size()))
+      out.replace(at, mark.size(), words);
+  return out;
+}
+
 // A message as words a controller reads safely inside a comment: letters, digits, space and
-// . , = _ - only. Units keep their sense (mm^3/s -> mm3-s), a clause mark (: ;) becomes a comma,
-// brackets and quotes go.
-std::string safe_words(std::string_view text) {
+// . , = _ - only. Formulas and units are put in words first (in_words), a clause mark (: ;)
+// becomes a comma, brackets and quotes go.
+std::string safe_words(std::string_view message) {
+  const std::string worded = in_words(message);
+  const std::string_view text = worded;
   std::string out;
   out.reserve(text.size());
   auto put = [&](char c) {

@@ -106,6 +106,7 @@ void EnergyIntegrator::spin_for_stopped_cut(const CanonCommand& command, Operati
   if (s.spindle != SpindleDir::Off && s.spindle_rpm > 0) return;
   if (stopped_cuts_++ == 0) {
     stopped_cut_line_ = command.line;
+    stopped_cut_at_s0_ = s.spindle != SpindleDir::Off; // M3/M4 in force, at S0
     stopped_cut_rpm_ = s.spindle_rpm > 0 ? s.spindle_rpm : constants_.hand_spindle_rpm;
   }
   const double rpm = s.spindle_rpm > 0 ? s.spindle_rpm : constants_.hand_spindle_rpm;
@@ -210,6 +211,10 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   result.machine_cost = result.duration_s / 3600 * result.machine_rate_per_hour;
   result.cost = result.electricity_cost + result.machine_cost;
   result.currency = options_.currency.value_or(constants_.currency);
+  if (options_.price_per_kwh && !options_.price_from.empty())
+    result.price_from = options_.price_from;
+  if (options_.machine_rate_per_hour && !options_.rate_from.empty())
+    result.rate_from = options_.rate_from;
   if (over_max_line_ >= 0) {
     char text[400];
     std::snprintf(text, sizeof text,
@@ -241,10 +246,24 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
   if (stopped_cuts_ > 0) {
     char text[480];
     const int more = int(stopped_cuts_ - 1);
-    if (stopped_cut_rpm_ > 0)
+    const std::string more_text =
+        more ? " and in " + std::to_string(more) + " more moves" : std::string();
+    if (stopped_cut_at_s0_ && stopped_cut_rpm_ > 0)
+      std::snprintf(text, sizeof text,
+                    "material is removed with the spindle on at S0 (M3/M4 with a speed of 0) "
+                    "here%s: on the machine the tool would break unless the spindle is switched "
+                    "by hand; counted as turning at %g rpm (the profile's hand_spindle_rpm)",
+                    more_text.c_str(), stopped_cut_rpm_);
+    else if (stopped_cut_at_s0_)
+      std::snprintf(text, sizeof text,
+                    "material is removed with the spindle on at S0 (M3/M4 with a speed of 0) "
+                    "here%s: on the machine the tool would break; its spindle and cutting energy "
+                    "are NOT counted (give the speed with an S word before the cut)",
+                    more_text.c_str());
+    else if (stopped_cut_rpm_ > 0)
       std::snprintf(
           text, sizeof text,
-          "material is removed with the spindle stopped (no M3/M4, or S0) here%s: on "
+          "material is removed with the spindle stopped (no M3/M4 in force) here%s: on "
           "the machine the tool would break unless the spindle is switched by hand; "
           "counted as turning at %g rpm (%s)",
           more ? (" and in " + std::to_string(more) + " more moves").c_str() : "", stopped_cut_rpm_,
@@ -259,8 +278,24 @@ EnergyResult EnergyIntegrator::totals(double program_duration_s) const {
                     more ? (" and in " + std::to_string(more) + " more moves").c_str() : "");
     result.diagnostics.push_back({Severity::Warning, "", stopped_cut_line_ + 1, 0, text});
   }
-  // A fitted cutting term used outside what it was fitted on: once per program, saying how far.
   const ZhouConstants& z = constants_.zhou;
+  // Zhou's idle line c1 + c2*n was fitted on the same speeds as its cutting term: outside them
+  // the spindle's power is extrapolated too, cutting or not.
+  if (constants_.model == PowerModel::Zhou && z.fitted_rpm_max > 0 && spindle_rpm_max_ > 0 &&
+      (spindle_rpm_max_ > z.fitted_rpm_max || spindle_rpm_min_ < z.fitted_rpm_min)) {
+    const bool above = spindle_rpm_max_ > z.fitted_rpm_max;
+    const double factor =
+        above ? spindle_rpm_max_ / z.fitted_rpm_max : z.fitted_rpm_min / spindle_rpm_min_;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "the idle spindle line c1 + c2*n was fitted at %g-%g rpm; this program runs the "
+                  "spindle at %g-%g rpm (%.1fx %s): its spindle power is extrapolated",
+                  z.fitted_rpm_min, z.fitted_rpm_max, spindle_rpm_min_, spindle_rpm_max_, factor,
+                  above ? "above" : "below");
+    result.diagnostics.push_back(
+        {Severity::Warning, "", above ? spindle_rpm_max_line_ + 1 : 0, 0, text});
+  }
+  // A fitted cutting term used outside what it was fitted on: once per program, saying how far.
   const bool fitted =
       constants_.model != PowerModel::Pavanaskar && constants_.cutting_term == CuttingTerm::Fitted;
   if (fitted && cut_seen_) {
@@ -325,6 +360,8 @@ EnergyResult integrate_energy(const std::vector<OperatingSegment>& trace, const 
   result.machine_cost = totals.machine_cost;
   result.machine_rate_per_hour = totals.machine_rate_per_hour;
   result.currency = totals.currency;
+  result.price_from = totals.price_from;
+  result.rate_from = totals.rate_from;
   result.model_description = totals.model_description;
   return result;
 }

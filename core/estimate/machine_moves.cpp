@@ -84,6 +84,7 @@ CanonCommand MachineMoves::view(const CanonCommand& command) {
       }
       *end[i] = h.at;
     }
+    if (setup_.travel) check_extent(c);
   } else if (setup_.travel) {
     check_travel(c);
   }
@@ -109,6 +110,38 @@ void MachineMoves::check_travel(const CanonCommand& c) {
                   names[i], machine[i], low, high);
     diagnostics_.push_back({Severity::Warning, file_, c.line + 1, 0, text});
     return;
+  }
+}
+
+void MachineMoves::check_extent(const CanonCommand& c) {
+  static const char* const names = "XYZ";
+  const double end[3] = {c.end.x, c.end.y, c.end.z};
+  for (int i = 0; i < 3; ++i) {
+    Extent& e = extent_[std::size_t(i)];
+    // A machine position (Z home, X/Y home) is the machine's, not the program's extent.
+    if (e.warned || (c.machine_axes & (1u << i)) || held_[std::size_t(i)].on) continue;
+    if (!e.seen) {
+      e = {true, false, end[i], end[i], c.line, c.line};
+      continue;
+    }
+    if (end[i] < e.low) e.low = end[i], e.low_line = c.line;
+    if (end[i] > e.high) e.high = end[i], e.high_line = c.line;
+    const auto [low, high] = (*setup_.travel)[std::size_t(i)];
+    constexpr double kSlackMm = 1e-6;
+    if (e.high - e.low <= high - low + kSlackMm) continue;
+    e.warned = true;
+    // In the program's units: a programmer reads `Y18` against 16 in of travel.
+    const double scale = c.state.inch ? 1 / 25.4 : 1.0;
+    const char* unit = c.state.inch ? "in" : "mm";
+    const int here = c.line, other = end[i] == e.high ? e.low_line : e.high_line;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "%c reaches %.4g %s here and %.4g %s at line %d: %.4g %s apart, more than the "
+                  "machine's %c travel of %.4g %s (travel_mm under [setup] in the profile): no "
+                  "work offset fits it in; is a decimal point missing?",
+                  names[i], end[i] * scale, unit, (end[i] == e.high ? e.low : e.high) * scale, unit,
+                  other + 1, (e.high - e.low) * scale, unit, names[i], (high - low) * scale, unit);
+    diagnostics_.push_back({Severity::Warning, file_, here + 1, 0, text});
   }
 }
 

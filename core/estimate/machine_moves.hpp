@@ -14,8 +14,10 @@
 // without it, to the machine coordinate read as a work coordinate, as rs274 does.
 //
 // The view also checks what only the machine's coordinates tell: a position past the travel
-// limits (when offsets and limits are given), and a switch between work offsets nothing
-// describes (taken at one place: the time of the move between them is not known).
+// limits (when offsets and limits are given; without offsets, a program whose own extent along
+// an axis is longer than the machine's travel on it: `Y18` typed for `Y1.8` on 16 in of Y), and
+// a switch between work offsets nothing describes (taken at one place: the time of the move
+// between them is not known).
 #pragma once
 
 #include <array>
@@ -47,6 +49,8 @@ public:
 
 private:
   void check_travel(const CanonCommand& move);
+  // Without offsets: the program's own extent along each axis against the machine's travel.
+  void check_extent(const CanonCommand& move);
 
   WorkSetup setup_;
   bool offsets_given_ = false;
@@ -63,6 +67,13 @@ private:
   double highest_z_ = 0; // at least the program's Z0
   int first_offset_ = 0; // the first work offset the program selects (1 = G54)
   bool warned_offsets_ = false, warned_travel_ = false;
+  // The lowest and highest work position each axis reaches (programmed, not machine moves).
+  struct Extent {
+    bool seen = false, warned = false;
+    double low = 0, high = 0;
+    int low_line = 0, high_line = 0; // 0-based lines where they were reached
+  };
+  std::array<Extent, 3> extent_{};
   Pose work_offset_{}, axis_offset_{};
   double tool_length_ = 0;
   std::vector<Diagnostic> diagnostics_;

@@ -54,6 +54,28 @@ bool is_code(std::string_view text) {
   return any;
 }
 
+// A commented-out O-word (LinuxCNC "o<probe> call", "o100 sub", Fanuc-style "O100 IF"): a call
+// or a control word taken out of the program, no operation's name.
+bool is_o_word(std::string_view text) {
+  const std::string l = to_lower(trim(text));
+  if (l.size() < 2 || l[0] != 'o') return false;
+  std::size_t i = 1;
+  if (l[i] == '<') {
+    i = l.find('>', i);
+    if (i == std::string::npos) return false;
+    ++i;
+  } else {
+    while (i < l.size() && std::isdigit(static_cast<unsigned char>(l[i])))
+      ++i;
+    if (i == 1) return false;
+  }
+  const std::string_view rest = trim(std::string_view(l).substr(i));
+  for (const char* word : {"call", "sub", "endsub", "return", "if", "elseif", "else", "endif",
+                           "while", "endwhile", "do", "repeat", "endrepeat", "break", "continue"})
+    if (rest.substr(0, rest.find(' ')) == word) return true;
+  return false;
+}
+
 // Notes posts write between operations, which name none.
 bool is_note(const std::string& l) {
   static const char* const kNotes[] = {
@@ -195,8 +217,8 @@ std::string operation_name_in(std::string_view comment) {
   }
   const bool digits_only =
       l.find_first_not_of("0123456789. ") == std::string::npos; // "14": a counter, no name
-  if (text.empty() || digits_only || describes_tool(l) || is_code(text) || is_note(l) ||
-      is_bare_number(l) || is_marker(text, l))
+  if (text.empty() || digits_only || describes_tool(l) || is_code(text) || is_o_word(text) ||
+      is_note(l) || is_bare_number(l) || is_marker(text, l))
     return {};
   return std::string(text);
 }

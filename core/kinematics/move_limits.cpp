@@ -111,6 +111,9 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
   m.traverse = rapid;
   const bool s_curve = k.feed_profile == FeedProfile::SCurve;
   Caps caps;
+  // The path speed the linear axes' max feeds allow (mm/s), before acceleration caps: what a
+  // control clamps a programmed feed to.
+  double axes_speed = std::numeric_limits<double>::infinity();
   auto axis = [&](int i, double share) {
     const AxisLimits& a = k.axes[i];
     caps.axis(share, axis_speed_limit(a, rapid), a.accel_mm_s2, s_curve ? a.jerk_mm_s3 : 0);
@@ -127,6 +130,7 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
     axis(first, in_plane);
     axis(second, in_plane);
     axis(normal, g.axial / m.length);
+    axes_speed = caps.speed;
     // Centripetal acceleration (v * in_plane)^2 / r within the slower in-plane axis, and within
     // what the control allows on arcs where the profile says so.
     if (in_plane > kNegligible && g.radius > 0) {
@@ -146,6 +150,7 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
       m.dir_in = m.dir_out = d / m.length;
       for (int i = 0; i < 3; ++i)
         axis(i, m.dir_in[i]);
+      axes_speed = caps.speed;
     } else {
       // Rotary axes only: the path is measured in degrees, as LinuxCNC does.
       const double da = move.end.a - move.start.a, db = move.end.b - move.start.b,
@@ -183,6 +188,15 @@ MoveLimits move_limits(const CanonCommand& move, const Kinematics& k, Warnings& 
                       "profile of the machine the program was made for",
                       programmed * 60, m.vmax_machine * 60);
         warnings.add_once("feed above placeholder rates", move.line, text);
+      } else if (std::isfinite(axes_speed) && programmed > axes_speed * (1 + 1e-6)) {
+        // The control clamps the feed to what the axes allow; the time counts at that feed.
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "the feed asked for here (%.0f mm/min) is above what the machine allows "
+                      "on this path (%.0f mm/min, from the profile's max_feed per axis): the "
+                      "control clamps it, and the time is counted at %.0f mm/min",
+                      programmed * 60, axes_speed * 60, axes_speed * 60);
+        warnings.add_counted("feed clamped", move.line, text);
       }
       m.vmax = std::min(m.vmax, programmed);
     } else if (move.state.feed_mode != FeedMode::UnitsPerRevolution) {

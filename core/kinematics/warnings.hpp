@@ -27,7 +27,20 @@ public:
       list_.push_back(Diagnostic{Severity::Warning, "", line + 1, 0, std::move(message)});
   }
 
+  // Said once, at its first line, with how many blocks it concerns in all (added when the
+  // whole program is planned).
+  void add_counted(const std::string& kind, int line, std::string message,
+                   Severity severity = Severity::Note) {
+    Counted& c = counted_[kind];
+    if (c.count++ == 0) c.diagnostic = Diagnostic{severity, "", line + 1, 0, std::move(message)};
+  }
+
   std::vector<Diagnostic> take() {
+    for (auto& [kind, c] : counted_) {
+      if (c.count > 1) c.diagnostic.message += " (" + std::to_string(c.count) + " blocks in all)";
+      list_.push_back(std::move(c.diagnostic));
+    }
+    counted_.clear();
     for (const auto& [kind, seen] : seen_)
       if (seen > kKeepPerKind)
         list_.push_back(Diagnostic{Severity::Note, "", 0, 0,
@@ -40,6 +53,11 @@ private:
   static constexpr int kKeepPerKind = 10;
   std::map<std::string, int> seen_;
   std::set<std::string> once_;
+  struct Counted {
+    std::size_t count = 0;
+    Diagnostic diagnostic;
+  };
+  std::map<std::string, Counted> counted_;
   std::vector<Diagnostic> list_;
 };
 

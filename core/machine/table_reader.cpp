@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 #include "ncjoule/profile.hpp"
 
@@ -38,8 +39,16 @@ const char* type_name(const toml::node& node) {
 
 } // namespace
 
-TableReader::TableReader(const toml::table& table, std::string file, std::string prefix)
-    : table_(table), file_(std::move(file)), prefix_(std::move(prefix)) {}
+TableReader::TableReader(const toml::table& table, std::string file, std::string prefix,
+                         std::map<std::string, ProfileValue>* values)
+    : table_(table), file_(std::move(file)), prefix_(std::move(prefix)), values_(values) {}
+
+// The file a node was read from: a value a base profile gives is that profile's, not the file
+// the reader was opened on.
+std::string TableReader::file_of(const toml::node* node) const {
+  if (node && node->source().path && !node->source().path->empty()) return *node->source().path;
+  return file_;
+}
 
 std::string TableReader::path_of(std::string_view key) const {
   return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
@@ -49,12 +58,19 @@ void TableReader::fail(std::string_view key, const std::string& reason) const {
   // Where: the key's value, else the table that lacks it.
   const toml::node* node = table_.get(key);
   const toml::source_position where = node ? node->source().begin : table_.source().begin;
-  throw ProfileError(file_, path_of(key), reason, int(where.line), int(where.column));
+  throw ProfileError(file_of(node ? node : &table_), path_of(key), reason, int(where.line),
+                     int(where.column));
 }
 
 const toml::node* TableReader::find(std::string_view key) {
   const toml::node* node = table_.get(key);
-  if (node) read_.insert(std::string(key));
+  if (!node) return nullptr;
+  read_.insert(std::string(key));
+  if (values_ && !node->is_table()) {
+    std::ostringstream text;
+    node->visit([&](const auto& value) { text << value; });
+    (*values_)[path_of(key)] = {file_of(node), text.str(), int(node->source().begin.line)};
+  }
   return node;
 }
 
@@ -209,7 +225,7 @@ std::optional<TableReader> TableReader::optional_table(std::string_view key) {
   if (!node) return std::nullopt;
   const auto* t = node->as_table();
   if (!t) fail(key, std::string("expected a table, found ") + type_name(*node));
-  return TableReader(*t, file_, path_of(key));
+  return TableReader(*t, file_, path_of(key), values_);
 }
 
 void TableReader::finish() const {
@@ -223,7 +239,8 @@ void TableReader::finish() const {
         break;
       }
     }
-    fail(key.str(), reason);
+    throw ProfileError(file_of(&node), path_of(key.str()), reason, int(node.source().begin.line),
+                       int(node.source().begin.column));
   }
 }
 

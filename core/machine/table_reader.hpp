@@ -10,6 +10,7 @@
 #include <string_view>
 #include <toml++/toml.h>
 
+#include "ncjoule/machine.hpp"
 #include "units.hpp"
 
 namespace ncjoule::profile_detail {
@@ -22,7 +23,9 @@ enum class Range {
 
 class TableReader {
 public:
-  TableReader(const toml::table& table, std::string file, std::string prefix);
+  // `values`, when given, receives every value read: its dotted key, its file and its text.
+  TableReader(const toml::table& table, std::string file, std::string prefix,
+              std::map<std::string, ProfileValue>* values = nullptr);
 
   // <stem>_<unit> for one unit of the dimension, converted to internal units.
   double quantity(std::string_view stem, Dimension dimension, Range range);
@@ -53,6 +56,7 @@ public:
 
 private:
   const toml::node* find(std::string_view key);
+  std::string file_of(const toml::node* node) const;
   double checked(std::string_view key, const toml::node& node, double factor, Range range);
   // Fails unless `value` (in internal units, from a key written in units of `factor`) is in
   // the dimension's physical range.
@@ -65,6 +69,7 @@ private:
   std::string prefix_;
   std::set<std::string, std::less<>> read_;
   std::map<std::string, Dimension, std::less<>> stems_; // for hints on unknown keys
+  std::map<std::string, ProfileValue>* values_ = nullptr;
 };
 
 } // namespace ncjoule::profile_detail

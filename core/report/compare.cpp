@@ -38,7 +38,7 @@ ProgramTotals program_totals(const Estimate& e) {
   t.machine_cost = e.energy.machine_cost;
   t.inch = e.inch;
   for (const OperationSummary& op : e.operations)
-    t.operations.push_back({op.name, op.time_s, op.energy_j, op.cost});
+    t.operations.push_back({op.name, op.time_s, op.energy_j, op.cost, op.time});
   t.currency = e.energy.currency;
   t.components_j = e.energy.components_j;
   t.air_cut_s = e.time.air_cut_s;
@@ -52,6 +52,8 @@ ProgramTotals program_totals(const Estimate& e) {
   t.volumes_known = e.removal.has_value() && e.unsimulated_tools.empty();
   t.guess = guessed_figures(e);
   t.peak_power_w = e.energy.peak_power_w;
+  t.time = e.time;
+  t.removal = e.removal.has_value();
   return t;
 }
 
@@ -193,35 +195,82 @@ std::string explain_difference(const RankedProgram& r, std::size_t max_component
   return text;
 }
 
+std::string explain_time_difference(const TimeSplit& here, const TimeSplit& best, bool removal,
+                                    std::size_t max_parts) {
+  // Words a programmer reads a cycle time in.
+  std::vector<std::pair<const char*, double>> parts;
+  if (removal) {
+    parts.emplace_back("cutting", here.cutting_s() - best.cutting_s());
+    parts.emplace_back("air cutting", here.air_cut_s - best.air_cut_s);
+  } else {
+    parts.emplace_back("feed moves", here.feed_s - best.feed_s);
+  }
+  parts.emplace_back("rapids", here.rapid_s - best.rapid_s);
+  parts.emplace_back("tool changes", here.tool_change_s - best.tool_change_s);
+  parts.emplace_back("dwells", here.dwell_s - best.dwell_s);
+  parts.emplace_back("spindle speed changes", here.spindle_s - best.spindle_s);
+  parts.emplace_back("other", here.other_s - best.other_s);
+  std::erase_if(parts, [](const auto& p) { return std::abs(p.second) < 0.05; });
+  std::stable_sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) {
+    return std::abs(a.second) > std::abs(b.second);
+  });
+  if (parts.size() > max_parts) parts.resize(max_parts);
+  std::string text;
+  for (const auto& [what, diff] : parts) {
+    char value[64];
+    std::snprintf(value, sizeof value, "%+.1f s", diff);
+    text += (text.empty() ? "" : ", ") + std::string(what) + " " + value;
+  }
+  return text;
+}
+
 std::string explain_by_operation(const RankedProgram& r, const RankedProgram& best, RankBy by,
                                  std::size_t max_operations) {
   if (r.rank == 1) return {};
   auto measure = [by](const OperationTotals& op) {
     return by == RankBy::Time ? op.time_s : by == RankBy::Cost ? op.cost : op.energy_j / 1000;
   };
-  // Operations of one name are summed (a post may split one into several runs).
-  std::vector<std::pair<std::string, double>> diffs; // name, this minus best
-  auto add = [&diffs](const std::string& name, double value) {
-    for (auto& d : diffs)
-      if (d.first == name) return void(d.second += value);
-    diffs.emplace_back(name, value);
+  // Operations of one name are summed (a post may split one into several runs); their time
+  // split too, for the cause in time.
+  struct Diff {
+    std::string name;
+    double value = 0; // this minus best
+    TimeSplit here, best;
+  };
+  std::vector<Diff> diffs;
+  auto add = [&diffs](const OperationTotals& op, double value, bool mine) {
+    auto it =
+        std::find_if(diffs.begin(), diffs.end(), [&](const Diff& d) { return d.name == op.name; });
+    if (it == diffs.end()) it = diffs.insert(diffs.end(), Diff{op.name});
+    it->value += value;
+    TimeSplit& t = mine ? it->here : it->best;
+    t.rapid_s += op.time.rapid_s;
+    t.feed_s += op.time.feed_s;
+    t.air_cut_s += op.time.air_cut_s;
+    t.tool_change_s += op.time.tool_change_s;
+    t.dwell_s += op.time.dwell_s;
+    t.spindle_s += op.time.spindle_s;
+    t.other_s += op.time.other_s;
   };
   for (const OperationTotals& op : r.totals.operations)
-    add(op.name, measure(op));
+    add(op, measure(op), true);
   for (const OperationTotals& op : best.totals.operations)
-    add(op.name, -measure(op));
+    add(op, -measure(op), false);
   auto here = [](const ProgramTotals& t, const std::string& name) {
     return std::any_of(t.operations.begin(), t.operations.end(),
                        [&](const OperationTotals& op) { return op.name == name; });
   };
   const double noise = by == RankBy::Time ? 0.05 : by == RankBy::Cost ? 5e-5 : 0.05e-3;
-  std::erase_if(diffs, [noise](const auto& d) { return std::abs(d.second) <= noise; });
-  std::stable_sort(diffs.begin(), diffs.end(), [](const auto& a, const auto& b) {
-    return std::abs(a.second) > std::abs(b.second);
+  std::erase_if(diffs, [noise](const Diff& d) { return std::abs(d.value) <= noise; });
+  std::stable_sort(diffs.begin(), diffs.end(), [](const Diff& a, const Diff& b) {
+    return std::abs(a.value) > std::abs(b.value);
   });
   if (diffs.size() > max_operations) diffs.resize(max_operations);
+  const bool removal = r.totals.removal && best.totals.removal;
   std::string text;
-  for (const auto& [name, diff] : diffs) {
+  for (const Diff& d : diffs) {
+    const std::string& name = d.name;
+    const double diff = d.value;
     char value[64];
     if (by == RankBy::Time)
       std::snprintf(value, sizeof value, "%+.1f s", diff);
@@ -232,7 +281,11 @@ std::string explain_by_operation(const RankedProgram& r, const RankedProgram& be
     const char* where = !here(best.totals, name) ? " (only here)"
                         : !here(r.totals, name)  ? " (only in the best)"
                                                  : "";
-    text += (text.empty() ? "" : ", ") + name + where + " " + value;
+    // The cause in time; for a time ranking only when it is more than the total said already.
+    std::string cause = explain_time_difference(d.here, d.best, removal, 2);
+    if (by == RankBy::Time && cause.find(',') == std::string::npos) cause.clear(); // said already
+    text += (text.empty() ? "" : ", ") + name + where + " " + value +
+            (cause.empty() ? "" : " (" + cause + ")");
   }
   return text;
 }
@@ -259,6 +312,14 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
     p["currency"] = t.currency;
     p["components"] = components_json(t.components_j);
     p["peak_power_w"] = t.peak_power_w;
+    p["time_split"] = Json{{"cutting_s", t.removal ? Json(t.time.cutting_s()) : Json(nullptr)},
+                           {"air_cut_s", t.removal ? Json(t.time.air_cut_s) : Json(nullptr)},
+                           {"feed_s", t.time.feed_s},
+                           {"rapid_s", t.time.rapid_s},
+                           {"tool_change_s", t.time.tool_change_s},
+                           {"dwell_s", t.time.dwell_s},
+                           {"spindle_s", t.time.spindle_s},
+                           {"other_s", t.time.other_s}};
     if (t.guess.guessed) {
       auto range = [](const GuessedFigures::Range& x) { return Json::array({x.low, x.high}); };
       p["stock_guess"] = Json{{"removed_mm3", range(t.guess.removed_mm3)},
@@ -270,6 +331,10 @@ std::string comparison_json(const std::vector<RankedProgram>& ranked, const Mach
       p["stock_guess"] = nullptr;
     }
     p["why"] = explain_difference(r);
+    p["why_in_time"] = r.rank == 1
+                           ? std::string()
+                           : explain_time_difference(t.time, ranked.front().totals.time,
+                                                     t.removal && ranked.front().totals.removal);
     p["why_by_operation"] = explain_by_operation(r, ranked.front(), by);
     p["vs_best"] = Json{{"time_s", r.time_diff_s},
                         {"time_pct", r.time_diff_pct},

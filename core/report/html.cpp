@@ -1,5 +1,6 @@
 // The HTML report: one page, self-contained (inline CSS, inline SVG, a short inline script), that
 // a planner can mail around and open offline.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -53,6 +54,26 @@ std::vector<BarSegment> component_segments(const ComponentValues& values) {
   return segments;
 }
 
+// Volumes in the program's units: in^3 (and in^3/min, J/in^3) for an inch program, as its
+// programmer reads them; mm^3 otherwise.
+struct VolumeUnits {
+  double per_mm3 = 1; // the unit's value of one mm^3
+  int decimals = 0;
+  std::string unit = "mm&sup3;", rate_unit = "mm&sup3;/s", rate_text = "mm\u00b3/s";
+  double rate_per_mm3_s = 1; // the rate unit's value of one mm^3/s
+};
+
+VolumeUnits volume_units(bool inch) {
+  if (!inch) return {};
+  return {1 / kMm3PerIn3, 3, "in&sup3;", "in&sup3;/min", "in\u00b3/min", 60 / kMm3PerIn3};
+}
+
+// Where a price came from, in words: the profile, the command line, a user config's section.
+std::string price_source(const std::string& from) {
+  if (from.empty() || from == "profile") return "the machine profile's";
+  return "from " + html_escaped(from);
+}
+
 std::string kpi_cards(const Estimate& e) {
   const EnergyResult& en = e.energy;
   // On a guessed stock, the figures it sets carry a "guessed" badge and their range.
@@ -66,28 +87,43 @@ std::string kpi_cards(const Estimate& e) {
            format_number(r.high * scale, decimals) + " " + unit;
   };
   std::string html = "<div class=\"kpis\">";
-  html += kpi("Time", duration_text(e.time_s), format_number(e.time_s, 1) + " s");
-  html += kpi("Energy" + badge, format_number(en.energy_j / 3.6e6, 4) + " kWh",
+  const VolumeUnits v = volume_units(e.inch);
+  html += kpi("Cycle time", duration_text(e.time_s), format_number(e.time_s, 1) + " s");
+  html += kpi("Electricity used" + badge, format_number(en.energy_j / 3.6e6, 4) + " kWh",
               format_number(en.energy_j / 1000, 1) + " kJ" +
                   (g.guessed ? range(g.energy_j, 1 / 3.6e6, 4, "kWh") : ""));
-  html += kpi("Removed" + badge, format_number(en.removed_mm3, 0) + " mm&sup3;",
-              "SEC " + format_number(en.sec_j_mm3, 2) + " J/mm&sup3;" +
-                  (g.guessed ? range(g.removed_mm3, 1, 0, "mm&sup3;") : ""));
-  html += kpi("Power" + badge, format_number(en.mean_power_w, 0) + " W",
-              "mean; peak " + format_number(en.peak_power_w, 0) + " W" +
+  html +=
+      kpi("Material removed" + badge,
+          format_number(en.removed_mm3 * v.per_mm3, v.decimals) + " " + v.unit,
+          "energy per volume " + format_number(en.sec_j_mm3 / v.per_mm3, e.inch ? 0 : 2) + " J/" +
+              v.unit + (g.guessed ? range(g.removed_mm3, v.per_mm3, v.decimals, v.unit) : ""));
+  html += kpi("Power drawn" + badge, format_number(en.mean_power_w, 0) + " W",
+              "on average; at most " + format_number(en.peak_power_w, 0) + " W" +
                   (g.guessed ? range(g.peak_power_w, 1, 0, "W peak") : ""));
-  html += kpi("CO&#8322;" + badge, format_number(en.co2_kg * 1000, 1) + " g",
+  html += kpi("CO&#8322; emitted" + badge, format_number(en.co2_kg * 1000, 1) + " g",
               format_number(en.co2_kg, 4) + " kg");
-  html += kpi("Cost" + badge, format_number(en.cost, 4) + " " + html_escaped(en.currency),
-              "at the profile's price");
+  const std::string currency = html_escaped(en.currency);
+  const double kwh = en.energy_j / 3.6e6;
+  std::string how = "electricity";
+  if (kwh > 0)
+    how += " at " + format_number(en.electricity_cost / kwh, 3) + " " + currency + "/kWh";
+  how += " (" + price_source(en.price_from) + ")";
+  if (en.machine_rate_per_hour > 0)
+    how += ", machine time at " + format_number(en.machine_rate_per_hour, 2) + " " + currency +
+           "/h (" + price_source(en.rate_from) + ")";
+  html += kpi("Cost of the run" + badge, format_number(en.cost, 4) + " " + currency, how);
   return html + "</div>";
 }
 
 std::string operations_table(const std::vector<OperationSummary>& ops, const Estimate& e) {
+  const VolumeUnits v = volume_units(e.inch);
   std::string html = "<table><thead><tr><th class=\"name\">Operation</th><th>Tool</th>"
                      "<th>Line</th><th>Start</th><th>Time</th><th>Air cut</th>"
-                     "<th>Removed mm&sup3;</th>"
-                     "<th>Energy kJ</th><th>Share</th><th>SEC J/mm&sup3;</th></tr></thead><tbody>";
+                     "<th>Removed " +
+                     v.unit +
+                     "</th>"
+                     "<th>Energy kJ</th><th>Share</th><th>J/" +
+                     v.unit + "</th></tr></thead><tbody>";
   for (const OperationSummary& op : ops) {
     const double share = e.energy.energy_j > 0 ? 100 * op.energy_j / e.energy.energy_j : 0;
     html += "<tr><td class=\"name\">" + html_escaped(op.name) + "</td><td>" +
@@ -95,9 +131,12 @@ std::string operations_table(const std::vector<OperationSummary>& ops, const Est
             (op.line >= 0 ? std::to_string(op.line + 1) : "&mdash;") + "</td><td>" +
             report_detail::clock_label(op.start_s) + "</td><td>" + duration_text(op.time_s) +
             "</td><td>" + (e.removal ? duration_text(op.time.air_cut_s) : "&mdash;") + "</td><td>" +
-            format_number(op.removed_mm3, 0) + "</td><td>" + format_number(op.energy_j / 1000, 2) +
-            "</td><td>" + format_number(share, 1) + "%</td><td>" +
-            (op.removed_mm3 > 0 ? format_number(op.energy_j / op.removed_mm3, 2) : "&mdash;") +
+            format_number(op.removed_mm3 * v.per_mm3, v.decimals) + "</td><td>" +
+            format_number(op.energy_j / 1000, 2) + "</td><td>" + format_number(share, 1) +
+            "%</td><td>" +
+            (op.removed_mm3 > 0
+                 ? format_number(op.energy_j / (op.removed_mm3 * v.per_mm3), e.inch ? 0 : 2)
+                 : "&mdash;") +
             "</td></tr>";
   }
   return html + "</tbody></table>";
@@ -129,10 +168,12 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
       id + "-power", "Power over time", "W",
       {{base_name(e.file), color, downsample_min_max(series.power_w, kMaxChartPoints)}}, markers,
       e.time_s);
-  html += report_detail::svg_time_chart(
-      id + "-mrr", "Material removal rate over time", "mm\u00b3/s",
-      {{base_name(e.file), "#e03131", downsample_min_max(series.mrr_mm3_s, kMaxChartPoints)}},
-      markers, e.time_s);
+  const VolumeUnits v = volume_units(e.inch);
+  Series mrr = downsample_min_max(series.mrr_mm3_s, kMaxChartPoints);
+  for (auto& value : mrr.value)
+    value *= v.rate_per_mm3_s;
+  html += report_detail::svg_time_chart(id + "-mrr", "Material removal rate over time", v.rate_text,
+                                        {{base_name(e.file), "#e03131", mrr}}, markers, e.time_s);
 
   std::vector<BarRow> op_rows;
   for (const OperationSummary& op : ops)
@@ -180,8 +221,13 @@ std::string comparison_section(const std::vector<ReportProgram>& programs,
   std::string html = "<section id=\"comparison\"><h2>Comparison</h2><div class=\"path\">" +
                      std::to_string(programs.size()) +
                      " alternatives on the same machine, least energy first</div>";
+  const bool inch = std::all_of(ranked.begin(), ranked.end(),
+                                [](const RankedProgram& r) { return r.totals.inch; });
+  const VolumeUnits v = volume_units(inch);
   html += "<table><thead><tr><th>#</th><th class=\"name\">Program</th><th>Time</th>"
-          "<th>Energy kJ</th><th>vs best</th><th>Removed mm&sup3;</th><th>SEC J/mm&sup3;</th>"
+          "<th>Energy kJ</th><th>vs best</th><th>Peak kW</th><th>Removed " +
+          v.unit + "</th><th>J/" + v.unit +
+          "</th>"
           "<th>CO&#8322; g</th><th>Cost " +
           currency + "</th><th>Time vs best</th></tr></thead><tbody>";
   for (const RankedProgram& r : ranked) {
@@ -193,9 +239,11 @@ std::string comparison_section(const std::vector<ReportProgram>& programs,
             (r.rank == 1 ? std::string("best")
                          : signed_text(r.energy_diff_j / 1000, 2, "kJ") + " (" +
                                signed_text(r.energy_diff_pct, 1, "%") + ")") +
-            "</td><td>" + format_number(t.removed_mm3, 0) + "</td><td>" +
-            format_number(t.sec_j_mm3, 2) + "</td><td>" + format_number(t.co2_kg * 1000, 1) +
-            "</td><td>" + format_number(t.cost, 4) + "</td><td>" +
+            "</td><td>" + format_number(t.peak_power_w / 1000, 2) + "</td><td>" +
+            format_number(t.removed_mm3 * v.per_mm3, v.decimals) + "</td><td>" +
+            format_number(t.sec_j_mm3 / v.per_mm3, inch ? 0 : 2) + "</td><td>" +
+            format_number(t.co2_kg * 1000, 1) + "</td><td>" + format_number(t.cost, 4) +
+            "</td><td>" +
             (r.rank == 1 || std::abs(r.time_diff_s) < 0.05
                  ? std::string(r.rank == 1 ? "&mdash;" : "same")
                  : signed_text(r.time_diff_s, 1, "s") + " (" +
@@ -231,7 +279,16 @@ std::string comparison_section(const std::vector<ReportProgram>& programs,
       html += "<li><b>" + html_escaped(base_name(r.totals.file)) + "</b> uses " +
               format_number(r.energy_diff_j / 1000, 2) + " kJ more than <b>" +
               html_escaped(base_name(ranked.front().totals.file)) +
-              "</b>; largest differences: " + html_escaped(explain_difference(r)) + ".</li>";
+              "</b>: " + format_number(std::abs(r.time_diff_s), 1) + " s " +
+              (r.time_diff_s >= 0 ? "longer" : "shorter") +
+              [&] {
+                const std::string why =
+                    explain_time_difference(r.totals.time, ranked.front().totals.time,
+                                            r.totals.removal && ranked.front().totals.removal);
+                return why.empty() ? std::string() : " (" + html_escaped(why) + ")";
+              }() +
+              ", at most " + format_number(r.totals.peak_power_w / 1000, 2) +
+              " kW; its energy in " + html_escaped(explain_difference(r)) + ".</li>";
   html += "</ul>";
 
   std::vector<BarRow> rows;

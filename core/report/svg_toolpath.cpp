@@ -59,20 +59,49 @@ std::string svg_toolpath(const std::string& id, const std::string& title,
           svg_coord(height) + "\" role=\"img\" aria-label=\"" + html_escaped(title) + "\">";
   html += "<rect class=\"frame\" x=\"0\" y=\"0\" width=\"" + svg_coord(kWidth) + "\" height=\"" +
           svg_coord(height) + "\"/>";
-  for (std::size_t k = 1; k < path.size(); ++k) {
+  // One <path> per run of consecutive segments drawn alike (rapids, or feed moves in one colour
+  // of the scale), with one tooltip naming the lines it covers: a path element and a tooltip
+  // per sampled point made a program of a few thousand blocks several megabytes; this keeps it
+  // under one. Points that land where the previous one did (at the drawing's resolution) add
+  // nothing and are left out.
+  for (std::size_t k = 1; k < path.size();) {
     const PathPoint& a = path[k - 1];
-    const PathPoint& b = path[k];
-    const std::string d = "M" + sx(a) + " " + sy(a) + "L" + sx(b) + " " + sy(b);
+    const PathPoint& first = path[k];
+    const std::string color = first.rapid ? "" : scale_color(first.power_w, low, high);
+    std::string last_x = sx(first), last_y = sy(first);
+    std::string d = "M" + sx(a) + " " + sy(a) + "L" + last_x + " " + last_y;
+    int first_line = first.line, last_line = first.line;
+    double power_low = first.power_w, power_high = first.power_w, mrr = first.mrr_mm3_s;
+    std::size_t end = k + 1;
+    for (; end < path.size(); ++end) {
+      const PathPoint& b = path[end];
+      if (b.rapid != first.rapid || (!b.rapid && scale_color(b.power_w, low, high) != color)) break;
+      first_line = std::min(first_line, b.line);
+      last_line = std::max(last_line, b.line);
+      power_low = std::min(power_low, double(b.power_w));
+      power_high = std::max(power_high, double(b.power_w));
+      mrr = std::max(mrr, double(b.mrr_mm3_s));
+      std::string x = sx(b), y = sy(b);
+      if (x == last_x && y == last_y) continue;
+      d += " " + x + " " + y; // further points of the L command
+      last_x = std::move(x), last_y = std::move(y);
+    }
+    const std::string lines = first_line == last_line ? "line " + std::to_string(first_line + 1)
+                                                      : "lines " + std::to_string(first_line + 1) +
+                                                            "-" + std::to_string(last_line + 1);
+    const std::string power =
+        power_text(power_low) + (power_text(power_high) != power_text(power_low)
+                                     ? " to " + power_text(power_high)
+                                     : std::string());
     const std::string tip =
-        "line " + std::to_string(b.line + 1) + (b.rapid ? ": rapid" : ": feed") + ", " +
-        power_text(b.power_w) +
-        (b.mrr_mm3_s > 0 ? ", MRR " + format_number(b.mrr_mm3_s, 1) + " mm\u00b3/s"
-                         : std::string());
-    html += b.rapid ? "<path class=\"rapid\" data-line=\"" + std::to_string(b.line + 1) +
-                          "\" d=\"" + d + "\"><title>" + html_escaped(tip) + "</title></path>"
-                    : "<path class=\"feed\" data-line=\"" + std::to_string(b.line + 1) +
-                          "\" stroke=\"" + scale_color(b.power_w, low, high) + "\" d=\"" + d +
-                          "\"><title>" + html_escaped(tip) + "</title></path>";
+        lines + (first.rapid ? ": rapid" : ": feed") + ", " + power +
+        (mrr > 0 ? ", MRR up to " + format_number(mrr, 1) + " mm\u00b3/s" : std::string());
+    html += first.rapid ? "<path class=\"rapid\" data-line=\"" + std::to_string(first_line + 1) +
+                              "\" d=\"" + d + "\"><title>" + html_escaped(tip) + "</title></path>"
+                        : "<path class=\"feed\" data-line=\"" + std::to_string(first_line + 1) +
+                              "\" stroke=\"" + color + "\" d=\"" + d + "\"><title>" +
+                              html_escaped(tip) + "</title></path>";
+    k = end;
   }
   html += "</svg><div class=\"legend scale\"><span>feed power " + power_text(low) + "</span>";
   for (const char* color : kScale)

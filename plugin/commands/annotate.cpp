@@ -41,10 +41,11 @@ int run_annotate(const AnnotateCliOptions& o) {
     return kUsage;
   }
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
-  if (!options) return status;
   MachineProfile machine;
   if (!load_machine(o.settings, machine, o.file)) return kInputError;
+  const std::optional<EstimateOptions> options =
+      estimate_options(o.settings, o.file, machine, status);
+  if (!options) return status;
   // A file replaced in place must be one no other program is still writing.
   FileStamp stamp;
   if (o.in_place) {

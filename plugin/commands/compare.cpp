@@ -73,6 +73,29 @@ std::string diff_text(double diff, double pct, const char* unit, int decimals) {
   return text;
 }
 
+// A table of rows by program, each column as wide as its program's name or its widest cell.
+void print_rows(const char* title, const char* first_column, const std::vector<std::string>& names,
+                const std::vector<std::string>& rows,
+                const std::vector<std::vector<std::string>>& cells) {
+  std::vector<std::size_t> widths;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    std::size_t w = names[i].size();
+    for (const auto& row : cells)
+      w = std::max(w, row[i].size());
+    widths.push_back(w);
+  }
+  std::printf("\n%s\n  %-12s", title, first_column);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    std::printf("  %*s", static_cast<int>(widths[i]), names[i].c_str());
+  std::printf("\n");
+  for (std::size_t row = 0; row < rows.size(); ++row) {
+    std::printf("  %-12s", rows[row].c_str());
+    for (std::size_t i = 0; i < names.size(); ++i)
+      std::printf("  %*s", static_cast<int>(widths[i]), cells[row][i].c_str());
+    std::printf("\n");
+  }
+}
+
 void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile& machine,
                  RankBy by) {
   // A program whose figures rest on a guessed stock is marked '*' (its range is in the warnings).
@@ -104,18 +127,18 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
   const bool inch = std::all_of(ranked.begin(), ranked.end(),
                                 [](const RankedProgram& r) { return r.totals.inch; });
   const double volume_unit = inch ? kMm3PerIn3 : 1.0; // mm^3 in one
-  std::printf("\n #  %-*s %6s %10s %10s %10s %9s %9s %9s %9s %10s  %-22s %s\n",
+  std::printf("\n #  %-*s %6s %10s %10s %10s %9s %8s %9s %9s %9s %10s  %-22s %s\n",
               static_cast<int>(width), "program", "setups", "time", "air cut", "energy kJ", "kWh",
-              inch ? "in3" : "mm3", inch ? "SEC J/in3" : "SEC J/mm3", "CO2 g",
+              "peak kW", inch ? "in3" : "mm3", inch ? "SEC J/in3" : "SEC J/mm3", "CO2 g",
               ("cost " + currency).c_str(), "energy vs best", "time vs best");
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     const RankedProgram& r = ranked[i];
     const ProgramTotals& t = r.totals;
     const bool best = r.rank == 1;
-    std::printf("%2d  %-*s %6zu %10s %10s %10.2f %9.5f %9.*f %9.*f %9.2f %10.4f  %-22s %s\n",
+    std::printf("%2d  %-*s %6zu %10s %10s %10.2f %9.5f %8.2f %9.*f %9.*f %9.2f %10.4f  %-22s %s\n",
                 r.rank, static_cast<int>(width), names[i].c_str(), t.setups, time_cells[i].c_str(),
-                air_cells[i].c_str(), t.energy_j / 1000, t.energy_j / 3.6e6, inch ? 3 : 0,
-                t.removed_mm3 / volume_unit, inch ? 0 : 2, t.sec_j_mm3 * volume_unit,
+                air_cells[i].c_str(), t.energy_j / 1000, t.energy_j / 3.6e6, t.peak_power_w / 1000,
+                inch ? 3 : 0, t.removed_mm3 / volume_unit, inch ? 0 : 2, t.sec_j_mm3 * volume_unit,
                 t.co2_kg * 1000, t.cost,
                 best ? "best"
                      : diff_text(r.energy_diff_j / 1000, r.energy_diff_pct, "kJ", 2).c_str(),
@@ -143,37 +166,77 @@ void print_table(const std::vector<RankedProgram>& ranked, const MachineProfile&
       cells.back().push_back(cell);
     }
   }
-  std::vector<std::size_t> widths;
-  for (std::size_t i = 0; i < ranked.size(); ++i) {
-    std::size_t w = names[i].size();
-    for (const auto& row : cells)
-      w = std::max(w, row[i].size());
-    widths.push_back(w);
+  print_rows("energy by component, kJ (difference to the best):", "component", names, rows, cells);
+
+  // Where the time goes, in the words a cycle time is read in.
+  const bool removal = std::all_of(ranked.begin(), ranked.end(),
+                                   [](const RankedProgram& r) { return r.totals.removal; });
+  struct TimeRow {
+    const char* name;
+    double (*of)(const TimeSplit&);
+  };
+  std::vector<TimeRow> time_rows;
+  if (removal) {
+    time_rows.push_back({"cutting", [](const TimeSplit& t) { return t.cutting_s(); }});
+    time_rows.push_back({"air cutting", [](const TimeSplit& t) { return t.air_cut_s; }});
+  } else {
+    time_rows.push_back({"feed moves", [](const TimeSplit& t) { return t.feed_s; }});
   }
-  std::printf("\nenergy by component, kJ (difference to the best):\n  %-12s", "component");
-  for (std::size_t i = 0; i < ranked.size(); ++i)
-    std::printf("  %*s", static_cast<int>(widths[i]), names[i].c_str());
-  std::printf("\n");
-  for (std::size_t row = 0; row < rows.size(); ++row) {
-    std::printf("  %-12s", rows[row].c_str());
-    for (std::size_t i = 0; i < ranked.size(); ++i)
-      std::printf("  %*s", static_cast<int>(widths[i]), cells[row][i].c_str());
-    std::printf("\n");
+  time_rows.push_back({"rapids", [](const TimeSplit& t) { return t.rapid_s; }});
+  time_rows.push_back({"tool changes", [](const TimeSplit& t) { return t.tool_change_s; }});
+  time_rows.push_back({"dwells", [](const TimeSplit& t) { return t.dwell_s; }});
+  time_rows.push_back({"spindle", [](const TimeSplit& t) { return t.spindle_s; }});
+  time_rows.push_back({"other", [](const TimeSplit& t) { return t.other_s; }});
+  rows.clear();
+  cells.clear();
+  for (const TimeRow& row : time_rows) {
+    bool any = false;
+    for (const RankedProgram& r : ranked)
+      any = any || row.of(r.totals.time) != 0;
+    if (!any) continue;
+    rows.push_back(row.name);
+    cells.emplace_back();
+    const double best = row.of(ranked.front().totals.time);
+    for (const RankedProgram& r : ranked) {
+      char cell[64];
+      const double value = row.of(r.totals.time);
+      if (r.rank == 1)
+        std::snprintf(cell, sizeof cell, "%.1f", value);
+      else
+        std::snprintf(cell, sizeof cell, "%.1f (%+.1f)", value, value - best);
+      cells.back().push_back(cell);
+    }
   }
+  print_rows("time by what it is spent on, s (difference to the best):", "time", names, rows,
+             cells);
   std::printf("\n");
   for (std::size_t i = 1; i < ranked.size(); ++i) {
     const RankedProgram& r = ranked[i];
+    const ProgramTotals& best = ranked.front().totals;
+    // The cause first in time (what a programmer changes), then the peak, then the energy's
+    // components.
+    const std::string in_time =
+        explain_time_difference(r.totals.time, best.time, r.totals.removal && best.removal);
+    char longer[96];
+    std::snprintf(longer, sizeof longer, "%.1f s %s", std::abs(r.time_diff_s),
+                  r.time_diff_s >= 0 ? "longer" : "shorter");
+    const std::string cause = in_time.empty() ? "" : " (" + in_time + ")";
+    const std::string time_text = longer + cause;
+    char peak[96];
+    std::snprintf(peak, sizeof peak, "peak %.1f kW (%+.1f)", r.totals.peak_power_w / 1000,
+                  (r.totals.peak_power_w - best.peak_power_w) / 1000);
     if (by == RankBy::Time)
-      std::printf("%s takes %.1f s longer than %s", names[i].c_str(), r.time_diff_s,
-                  names[0].c_str());
+      std::printf("%s takes %s than %s%s; %s", names[i].c_str(), longer, names[0].c_str(),
+                  cause.c_str(), peak);
     else if (by == RankBy::Cost)
-      std::printf("%s costs %.4f %s more than %s", names[i].c_str(), r.cost_diff,
-                  printable(r.totals.currency).c_str(), names[0].c_str());
+      std::printf("%s costs %.4f %s more than %s: %s; %s", names[i].c_str(), r.cost_diff,
+                  printable(r.totals.currency).c_str(), names[0].c_str(), time_text.c_str(), peak);
     else
-      std::printf("%s uses %.2f kJ more than %s: %s", names[i].c_str(), r.energy_diff_j / 1000,
-                  names[0].c_str(), explain_difference(r).c_str());
+      std::printf("%s uses %.2f kJ more than %s: %s; %s; energy in %s", names[i].c_str(),
+                  r.energy_diff_j / 1000, names[0].c_str(), time_text.c_str(), peak,
+                  explain_difference(r).c_str());
     const std::string ops = explain_by_operation(r, ranked.front(), by);
-    std::printf("%sby operation: %s\n", by == RankBy::Energy ? "; " : ": ",
+    std::printf("; by operation: %s\n",
                 ops.empty() ? "no operation differs" : printable(ops).c_str());
   }
 }

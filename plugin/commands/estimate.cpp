@@ -24,6 +24,7 @@
 #include "ncjoule/profile.hpp"
 #include "ncjoule/report.hpp"
 #include "progress.hpp"
+#include "setting_sources.hpp"
 
 namespace ncjoule::cli {
 namespace {
@@ -34,6 +35,7 @@ struct EstimateCliOptions {
   bool json = false;
   bool json_compact = false;
   bool csv = false;
+  bool show_settings = false;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -54,6 +56,22 @@ void print_summary(const SourceFile& source, const MachineProfile& machine, cons
       "  dialect     %s\n",
       printable(describe_dialect_choice({e.dialect, e.dialect_origin, e.dialect_reason})).c_str());
   std::printf("  model       %s\n", energy.model_description.c_str());
+  if (!machine.estimated.empty()) {
+    // A class profile: the reader must know which figures are no measurement of a machine.
+    std::string what;
+    for (std::size_t k = 0; k < machine.estimated.size(); ++k)
+      what += (k == 0                              ? ""
+               : k + 1 == machine.estimated.size() ? " and "
+                                                   : ", ") +
+              machine.estimated[k];
+    std::printf("  estimated   this profile's %s are estimates for its class of machine, not "
+                "measured on one: the %s figures below are approximate (ncjoule calibrate "
+                "measures yours)\n",
+                what.c_str(),
+                machine.estimated.size() == 1 && machine.estimated[0] == "power"
+                    ? "energy and power"
+                    : "time, energy and power");
+  }
   std::printf("  time        %s (%.3f s), %zu blocks\n", clock_text(e.time_s).c_str(), e.time_s,
               e.lines.size());
   std::printf("  rapids      %s\n", clock_text(t.rapid_s).c_str());
@@ -152,10 +170,19 @@ void print_operations(const Estimate& e) {
 
 int run_estimate(const EstimateCliOptions& o) {
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
-  if (!options) return status;
   MachineProfile machine;
-  if (!load_machine(o.settings, machine, o.file)) return kInputError;
+  std::string machine_from;
+  if (!load_machine(o.settings, machine, o.file, &machine_from)) return kInputError;
+  if (o.show_settings) {
+    const std::optional<ResolvedSettings> settings =
+        settings_for(o.settings, o.file, machine, status);
+    if (!settings) return status;
+    print_settings(o.file, machine, machine_from, *settings);
+    return kOk;
+  }
+  const std::optional<EstimateOptions> options =
+      estimate_options(o.settings, o.file, machine, status);
+  if (!options) return status;
   auto source = read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!source) return kInputError;
 
@@ -229,6 +256,11 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   json_compact->excludes(json);
   cmd->add_flag("--csv", options->csv,
                 "Print one CSV row per block, with a header row (docs/report.md)")
+      ->excludes(json)
+      ->excludes(json_compact);
+  cmd->add_flag("--show-settings", options->show_settings,
+                "Print every setting (machine, material, prices, dialect, tool table, each value "
+                "of the profile) with where it came from, and estimate nothing")
       ->excludes(json)
       ->excludes(json_compact);
   cmd->callback([options, &exit_code] { exit_code = run_estimate(*options); });

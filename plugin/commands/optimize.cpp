@@ -148,10 +148,11 @@ int run_optimize(const OptimizeCliOptions& o) {
     return kUsage;
   }
   int status = kOk;
-  const std::optional<EstimateOptions> options = estimate_options(o.settings, o.file, status);
-  if (!options) return status;
   MachineProfile machine;
   if (!load_machine(o.settings, machine, o.file)) return kInputError;
+  const std::optional<EstimateOptions> options =
+      estimate_options(o.settings, o.file, machine, status);
+  if (!options) return status;
   const auto input =
       read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!input) return kInputError;

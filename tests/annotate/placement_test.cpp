@@ -6,6 +6,7 @@
 #include <string>
 
 #include "annotate_helpers.hpp"
+#include "header.hpp"
 #include "line_layout.hpp"
 
 using namespace ncjoule;
@@ -247,4 +248,21 @@ TEST_CASE("a header warning names its block's line in the annotated file, past t
   CHECK(warned == 1);
   CHECK(lines[0] == "%");
   CHECK(lines[1].rfind("(NCJ SEAL ", 0) == 0); // the header: between the % line and the program
+}
+
+TEST_CASE("a header warning reads in words: a model's formula by its name, units with 'per'") {
+  const annotation::WriteStyle style{annotation::comment_style(*find_dialect("linuxcnc")), 200};
+  const std::vector<std::string> lines = annotation::warning_lines(
+      {{"", 0,
+        "the cutting term c3*n^c4*MRR was fitted on MRR 3-48 mm^3/s; this program removes up to "
+        "362 mm^3/s (7.5x the highest): its cutting power is extrapolated",
+        1},
+       {"", 0, "the idle spindle line c1 + c2*n was fitted at 500-2100 rpm", 1}},
+      style, [](int line) { return line; });
+  REQUIRE(lines.size() == 2);
+  CAPTURE(lines[0]);
+  CHECK(lines[0].find("cutting term was fitted on MRR 3-48 mm3 per s") != std::string::npos);
+  CHECK(lines[0].find("c3 nc4") == std::string::npos);
+  CHECK(lines[0].find("mm3-s") == std::string::npos);
+  CHECK(lines[1].find("the idle spindle line was fitted at 500-2100 rpm") != std::string::npos);
 }

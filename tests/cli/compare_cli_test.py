@@ -107,8 +107,20 @@ check(r.returncode == 0 and "best" in r.stdout and "kJ more than" in r.stdout an
       "the text table ranks, compares and names the reason")
 check(doc["warnings"] == [], f"the same part: no warning ({doc['warnings']})")
 for p in progs:
+    split = p["time_split"]
+    check(abs(split["feed_s"] + split["rapid_s"] + split["tool_change_s"] + split["dwell_s"]
+              + split["spindle_s"] + split["other_s"] - p["time_s"]) < 1e-6
+          and abs(split["cutting_s"] + split["air_cut_s"] - split["feed_s"]) < 1e-6
+          and p["peak_power_w"] > 0,
+          f"the JSON's time split adds up to the time ({split})")
+check(progs[0]["why_in_time"] == "" and progs[1]["why_in_time"] != "",
+      f"the JSON says the difference in time ({progs[1]['why_in_time']!r})")
+for p in progs:
     check(0 < p["air_cut_s"] < p["time_s"], f"air cutting time per alternative ({p['air_cut_s']:.1f} s)")
 check("air cut" in r.stdout, "the table shows air cutting")
+check("peak kW" in r.stdout and "time by what it is spent on" in r.stdout
+      and "rapids" in r.stdout and ("s longer" in r.stdout or "s shorter" in r.stdout),
+      f"the table shows the peak power and the time split ({r.stdout[-600:]!r})")
 
 # Alternatives that do not make the same part: said, in the table and in the JSON.
 other = os.path.join(PROGRAMS, "anziani-table2-1.ngc")

@@ -186,6 +186,15 @@ r, w_generic = spindle_w("generic-3axis")
 check(abs(w_generic - 2191.67) < 1 and "above the spindle's maximum of 10000 rpm" in r.stderr
       and "measured at 3000-6700 rpm" in r.stderr and "1.5x above" in r.stderr,
       f"the generic VMC clamps S24000 to its 10,000 rpm and says so ({w_generic:.0f} W)")
+# A class profile says in the summary what of it is an estimate, not a measurement; the VF-0
+# Pavanaskar measured says nothing of the kind.
+r = run("estimate", "-", "-m", "router-2.2kw", stdin=router_job)
+check(r.returncode == 0 and "estimated   this profile's power, timing and rates are estimates "
+      "for its class of machine" in r.stdout, f"the router's summary says it is estimated ({r.stdout[:400]!r})")
+r = run("estimate", "-", "-m", "haas-vf2", stdin=router_job)
+check("estimated   this profile's power and timing" in r.stdout, "the VF-2's summary names its planner")
+r = run("estimate", "-", "-m", "haas-vf0", stdin=router_job)
+check(r.returncode == 0 and "estimated   " not in r.stdout, "a measured profile says nothing of it")
 r = run("estimate", "-", "-m", "haas-vf9", stdin=router_job)
 check(r.returncode != 0 and "haas-vf2" in r.stderr and "shipped profiles" in r.stderr,
       "an unknown profile name lists the shipped ones")

@@ -183,6 +183,69 @@ try:
     check(r.returncode == 2 and "bad-rate.toml:1:" in r.stderr and "machine_rate_per_hour" in r.stderr,
           f"a negative rate in the config is refused with its line ({r.stderr[-200:]!r})")
 
+    # Settings where they belong (issue 42). A router profile that says mdf is not costed as
+    # aluminium by the config's shop-wide material; a copied router profile with its own rate is
+    # costed at its rate, not the config's; the config's section for a machine wins over the
+    # profile; override_profiles puts the shop-wide values first; the command line wins over all.
+    router = os.path.join(MACHINES, "router-2.2kw-vfd.toml")
+    shop_wide = write(os.path.join(work, "shop-wide.toml"),
+                      'material = "aluminium-alloy"\nmachine_rate_per_hour = 85\n')
+    r, doc = estimate(lone, "-m", router, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      config=shop_wide)
+    check(doc is not None and doc["machine"]["material"] == "mdf",
+          f"the router's own mdf wins over the config's aluminium ({doc and doc['machine']['material']})")
+    check(doc is not None and abs(doc["machine_cost"] - 85 * doc["time_s"] / 3600) < 1e-9,
+          "a profile without a rate takes the config's shop-wide one")
+    copied = write(os.path.join(work, "my-router.toml"),
+                   'base = "router-2.2kw-vfd"\nname = "Our router"\n[power]\nmachine_rate_per_hour = 30\n')
+    r, doc = estimate(lone, "-m", copied, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      config=shop_wide)
+    check(doc is not None and doc["machine"]["name"] == "Our router"
+          and abs(doc["machine_cost"] - 30 * doc["time_s"] / 3600) < 1e-9
+          and doc["machine"]["material"] == "mdf",
+          f"a router profile on a shipped base is costed at its own rate ({r.stderr[-300:]!r})")
+    sections = write(os.path.join(work, "sections.toml"),
+                     'material = "aluminium-alloy"\nmachine_rate_per_hour = 85\n'
+                     '[machines."my-router"]\nmachine_rate_per_hour = 45\nmaterial = "softwood"\n'
+                     '[machines."haas-vf2"]\nmachine_rate_per_hour = 95\n')
+    r, doc = estimate(lone, "-m", copied, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      config=sections)
+    check(doc is not None and abs(doc["machine_cost"] - 45 * doc["time_s"] / 3600) < 1e-9
+          and doc["machine"]["material"] == "softwood",
+          "the config's section for the machine wins over the profile's own values")
+    r, doc = estimate(lone, "-m", copied, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      "--machine-rate", "12", "--material", "plastic", config=sections)
+    check(doc is not None and abs(doc["machine_cost"] - 12 * doc["time_s"] / 3600) < 1e-9
+          and doc["machine"]["material"] == "plastic", "the command line wins over the section")
+    r, doc = estimate(lone, "-m", "haas-vf2", "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      config=sections)
+    check(doc is not None and abs(doc["machine_cost"] - 95 * doc["time_s"] / 3600) < 1e-9,
+          "a shipped profile's section by its name")
+    overriding = write(os.path.join(work, "overriding.toml"),
+                       'override_profiles = true\nmaterial = "aluminium-alloy"\nmachine_rate_per_hour = 85\n')
+    r, doc = estimate(lone, "-m", copied, "--tool", "1:flat:6", "--stock", "box:0,0,-10,100,20,0",
+                      config=overriding)
+    check(doc is not None and doc["machine"]["material"] == "aluminium-alloy"
+          and abs(doc["machine_cost"] - 85 * doc["time_s"] / 3600) < 1e-9,
+          "override_profiles: the config's shop-wide values win over the profile's")
+    # --show-settings: every setting with where it came from, and no estimate.
+    r = run("estimate", lone, "-m", copied, "--show-settings", "--price", "0.3", config=sections)
+    out = r.stdout
+    check(r.returncode == 0, f"--show-settings runs ({r.stderr[-300:]!r})")
+    check('[machines."my-router"]' in out and "machine_rate_per_hour" in out
+          and "command line (--price)" in out and "command line (--machine)" in out,
+          f"--show-settings names the section and the command line ({out[:600]!r})")
+    check("base profile" in out and "router-2.2kw-vfd.toml" in out
+          and "power.material" in out and "energy" not in out,
+          "--show-settings names the base profile's values and estimates nothing")
+    line = [l for l in out.splitlines() if l.strip().startswith("currency")]
+    check(line and "base profile" in line[0], f"the currency is the base profile's ({line})")
+    # A section that is not a table, and a machine key given as a table, are refused.
+    bad_section = write(os.path.join(work, "bad-section.toml"), '[machine."haas-vf2"]\nmachine_rate_per_hour = 9\n')
+    r = run("estimate", part, config=bad_section)
+    check(r.returncode == 2 and "bad-section.toml:" in r.stderr and '[machines.' in r.stderr,
+          f"[machine.NAME] points to [machines.NAME] ({r.stderr[-300:]!r})")
+
     # doctor and --version.
     r = run("--version")
     check(r.returncode == 0 and r.stdout.startswith("ncjoule 0."), f"--version ({r.stdout!r})")

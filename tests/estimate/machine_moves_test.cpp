@@ -161,3 +161,29 @@ TEST_CASE("without work offsets, G53 X/Y goes to the machine X/Y home the profil
   CHECK(named.time_s > plain.time_s);
   CHECK(named.energy.removed_mm3 == plain.energy.removed_mm3);
 }
+
+TEST_CASE("without work offsets, a program longer along an axis than the machine's travel is "
+          "warned about: Y18 typed for Y1.8 on a VF-2's 16 in of Y") {
+  const MachineProfile vf2 =
+      load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/haas-vf2.toml");
+  REQUIRE(vf2.setup.travel);
+  REQUIRE(vf2.setup.work_offsets.empty());
+  auto program = [](const std::string& y) {
+    return "G20 G90 G17\nT1 M6\nS3000 M3\nG0 X0 Y0 Z0.1\nG1 Z-0.05 F20\nG1 X2.\nG1 " + y +
+           "\nG1 X0.\nG53 G0 Z0.\nG53 G0 X0. Y0.\nM30\n";
+  };
+  const Estimate typo = estimate_program(make_source("typo.nc", program("Y18.")), vf2, {});
+  CHECK(warned(typo, "Y reaches 18 in here and 0 in at line 4: 18 in apart, more than the "
+                     "machine's Y travel of 16 in"));
+  for (const Diagnostic& d : typo.diagnostics)
+    if (d.message.find("Y travel") != std::string::npos) CHECK(d.line == 7);
+  // The program as meant, and machine moves (G53 Z and X/Y home) count for nothing.
+  const Estimate meant = estimate_program(make_source("meant.nc", program("Y1.8")), vf2, {});
+  CHECK_FALSE(warned(meant, "travel"));
+  // A millimetre program says it in mm; the profile with no travel checks nothing.
+  const std::string mm = "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F300\nG1 X800\nM30\n";
+  CHECK(warned(estimate_program(make_source("mm.nc", mm), vf2, {}),
+               "X reaches 800 mm here and 0 mm at line 2: 800 mm apart, more than the machine's "
+               "X travel of 762 mm"));
+  CHECK_FALSE(warned(estimate_program(make_source("mm.nc", mm), generic(), {}), "travel"));
+}

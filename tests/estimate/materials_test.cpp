@@ -113,6 +113,11 @@ TEST_CASE("fitted profiles: the slot inside the fitted range, a warning outside 
   const Estimate outside = run(slot(8000), zhou);
   CHECK(warned(outside, "fitted on 500-2100 rpm"));
   CHECK(warned(outside, "3.8x outside"));
+  // Its idle line c1 + c2*n was fitted on the same speeds: the spindle's power is extrapolated
+  // too, and said with how far (8000 / 2100 = 3.8x); inside the range, nothing.
+  CHECK(warned(outside, "the idle spindle line c1 + c2*n was fitted at 500-2100 rpm"));
+  CHECK(warned(outside, "8000-8000 rpm (3.8x above)"));
+  CHECK_FALSE(warned(inside, "idle spindle line"));
   // A material does not replace a machine's fit; asking for one says so.
   const Estimate asked = run(slot(1300, 150), zhou, "brass");
   CHECK(warned(asked, "not used"));
@@ -274,6 +279,12 @@ TEST_CASE("material removed with the spindle stopped is said, and counted at a k
   CHECK(warned(bare, "spindle stopped (no M3/M4 and no S) here and in 1 more moves"));
   CHECK(warned(bare, "NOT counted"));
   CHECK(cutting_j(bare) == 0);
+  // M3 at S0: both are there, and the warning says so (not "no M3/M4 and no S").
+  const Estimate s0 = estimate_program(make_source("s0.nc", program("S0 M3\n")), machine, options);
+  CHECK(warned(s0, "spindle on at S0 (M3/M4 with a speed of 0) here and in 1 more moves"));
+  CHECK(warned(s0, "NOT counted (give the speed with an S word before the cut)"));
+  CHECK_FALSE(warned(s0, "no M3/M4 and no S"));
+  CHECK(cutting_j(s0) == 0);
   // S without M3: counted at the program's speed.
   const Estimate s_only =
       estimate_program(make_source("c.nc", program("S9000\n")), machine, options);

@@ -94,6 +94,11 @@ TEST_CASE("boilerplate, rules, resets and bare operation numbers are no names") 
   CHECK(operation_name_in("Op. 3").empty());
   CHECK(operation_name_in("OPERATION #12").empty());
   CHECK(operation_name_in("OP 2 ROUGH POCKET") == "OP 2 ROUGH POCKET");
+  // A call or control word commented out (genes-encoder.ngc: "(o<tedautoz> call)") is code.
+  CHECK(operation_name_in("o<tedautoz> call").empty());
+  CHECK(operation_name_in("O100 CALL [1] [2]").empty());
+  CHECK(operation_name_in("o200 endsub").empty());
+  CHECK(operation_name_in("Outline call-outs") == "Outline call-outs");
   CHECK(operation_name_in("== Contour1 ==") == "Contour1");
 }
 

@@ -169,3 +169,31 @@ TEST_CASE("rotary-only moves are timed in degrees") {
   CHECK(t.commands[0].length_mm == 0);
   CHECK(t.total_s == doctest::Approx(trapezoid_time(0, 0, 30, 90, 360)));
 }
+
+TEST_CASE("a feed above the machine's maximum is clamped with one note: the block, the limit, "
+          "the count") {
+  const MachineProfile m = round_machine(); // max feed 10000 mm/min on every axis
+  std::vector<CanonCommand> program{
+      feed(at(0, 0), at(100, 0), 50000), feed(at(100, 0), at(100, 100), 8000),
+      feed(at(100, 100), at(0, 100), 60000), feed(at(0, 100), at(0, 0), 12000)};
+  for (std::size_t i = 0; i < program.size(); ++i)
+    program[i].line = int(i) + 4;
+  const Timeline t = plan(program, m);
+  int notes = 0;
+  for (const Diagnostic& d : t.diagnostics) {
+    if (d.message.find("clamps it") == std::string::npos) continue;
+    ++notes;
+    CHECK(d.severity == Severity::Note);
+    CHECK(d.line == 5); // the first such block (0-based line 4)
+    CHECK(d.message.find("50000 mm/min") != std::string::npos);
+    CHECK(d.message.find("(10000 mm/min") != std::string::npos);
+    CHECK(d.message.find("3 blocks in all") != std::string::npos);
+  }
+  CHECK(notes == 1);
+  // Timed at the limit: 100 mm at 10000 mm/min is at least 0.6 s.
+  CHECK(t.commands[0].duration_s >= 0.6);
+  // A feed within the limit, on the diagonal too (each axis at 7071 mm/min), says nothing.
+  const Timeline within = plan({feed(at(0, 0), at(100, 100), 14000)}, m);
+  for (const Diagnostic& d : within.diagnostics)
+    CHECK(d.message.find("clamps it") == std::string::npos);
+}

@@ -62,6 +62,41 @@ TEST_CASE("programs rank by energy and carry their differences to the best") {
   CHECK(explain_difference(ranked[2]) == "axis_y +1.5 kJ, axis_x -1.1 kJ");
 }
 
+TEST_CASE("a difference is told in time: what the time is spent on, program and operation") {
+  ProgramTotals fast, slow;
+  fast.file = "fast.ngc";
+  fast.removal = slow.removal = true;
+  fast.time.feed_s = 100;
+  fast.time.air_cut_s = 20;
+  fast.time.rapid_s = 10;
+  fast.energy_j = 50e3;
+  slow = fast;
+  slow.file = "slow.ngc";
+  slow.time.feed_s = 130; // 25 s more cutting, 5 s more air
+  slow.time.air_cut_s = 25;
+  slow.time.tool_change_s = 0.02; // under 0.05 s: not named
+  slow.energy_j = 104.8e3;
+  fast.time_s = fast.time.total_s();
+  slow.time_s = slow.time.total_s();
+  OperationTotals pocket{"Pocket", 0, 0, 0, {}};
+  pocket.time = fast.time;
+  pocket.energy_j = fast.energy_j;
+  fast.operations = {pocket};
+  pocket.time = slow.time;
+  pocket.energy_j = slow.energy_j;
+  slow.operations = {pocket};
+  const auto ranked = rank_programs({slow, fast});
+  REQUIRE(ranked[1].totals.file == "slow.ngc");
+  CHECK(explain_time_difference(ranked[1].totals.time, ranked[0].totals.time, true) ==
+        "cutting +25.0 s, air cutting +5.0 s");
+  CHECK(explain_time_difference(ranked[0].totals.time, ranked[0].totals.time, true).empty());
+  // Without removal, cutting and air cutting are one part.
+  CHECK(explain_time_difference(ranked[1].totals.time, ranked[0].totals.time, false) ==
+        "feed moves +30.0 s");
+  CHECK(explain_by_operation(ranked[1], ranked[0], RankBy::Energy) ==
+        "Pocket +54.8 kJ (cutting +25.0 s, air cutting +5.0 s)");
+}
+
 TEST_CASE("the measured runs are drawn over the predicted line, the median run on top") {
   Estimate e;
   e.file = "part.nc";

@@ -215,6 +215,9 @@ struct EnergyOptions {
   std::optional<double> price_per_kwh;
   std::optional<double> machine_rate_per_hour; // overrides the profile's
   std::optional<std::string> currency;
+  // Where the price and the machine rate above come from, for the reports ("command line",
+  // "user config config.toml [machines.\"haas-vf2\"]"); empty: the profile's own.
+  std::string price_from, rate_from;
   // Flutes of each tool (by the number moves carry), where known: with a material that has
   // Kienzle's constants, the chip thickness (feed per tooth) corrects the cutting term.
   std::map<int, int> flutes;
@@ -260,6 +263,9 @@ struct EnergyResult {
   double machine_cost = 0;
   double machine_rate_per_hour = 0;
   std::string currency;
+  // Where the price per kWh and the machine rate came from ("profile", "command line", a user
+  // config's file and section).
+  std::string price_from = "profile", rate_from = "profile";
   ComponentValues components_j{};
   std::string model_description;
   std::vector<Diagnostic> diagnostics;
@@ -313,6 +319,7 @@ private:
   int stopped_cut_line_ = -1;
   std::size_t stopped_cuts_ = 0;
   double stopped_cut_rpm_ = 0;
+  bool stopped_cut_at_s0_ = false; // the first such cut had M3/M4 in force, at S0
 };
 
 // Integrates power over every step of every command (trapezoid rule, MRR per step = step

@@ -242,12 +242,28 @@ int work_offset_index(std::string_view name);
 // 1 .. 9 -> "G54" .. "G59.3", 10 .. 309 -> "G54.1 P1" ..; "G54" for anything else.
 std::string work_offset_name(int index);
 
+// One value of a profile as written: the file that gives it (the profile, or a base profile it
+// starts from), its text and its line.
+struct ProfileValue {
+  std::string file;
+  std::string text;
+  int line = 0;
+};
+
 struct MachineProfile {
   std::string name;
   std::string source_path; // file it came from
+  // The profiles it starts from (`base = "..."`), nearest first; empty for a whole profile.
+  std::vector<std::string> base_paths;
+  // Every value read, by dotted key ("power.material", "kinematics.x.rapid_mm_min"): which
+  // file gives it, for the settings' sources and for errors.
+  std::map<std::string, ProfileValue> values;
   bool by_default = false; // nothing named it: the generic profile stood in (said in headers)
   // One line on what the profile is and what its numbers rest on (`ncjoule profiles`).
   std::string summary;
+  // What of the profile is an estimate for its class of machine, not a measurement of one
+  // ("power", "timing", "rates"; `estimated = [...]`): the summaries say so.
+  std::vector<std::string> estimated;
   std::string dialect; // controller dialect name (see gcode.hpp), or "auto": detected
   // With dialect "auto": the machine's own control, used when nothing in a program names one.
   std::string fallback_dialect;

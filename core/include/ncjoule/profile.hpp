@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "ncjoule/machine.hpp"
 
@@ -35,9 +36,17 @@ private:
 };
 
 // Parses profile text; `path` is used in error messages and stored as source_path.
-MachineProfile parse_profile(std::string_view text, const std::string& path);
+//
+// A profile may start from another: `base = "haas-vf2"` (or "mill.toml") takes every value of
+// that profile, found beside this one or else in `base_dirs` (the shipped profiles' folders),
+// and this file's values replace its own key by key (a table's keys one by one, an array as a
+// whole). A base may have its own base; a cycle is refused at the `base` line. Errors name the
+// file that wrote the value; MachineProfile::values says which file gives each.
+MachineProfile parse_profile(std::string_view text, const std::string& path,
+                             const std::vector<std::string>& base_dirs = {});
 
 // Reads and parses a profile file.
-MachineProfile load_profile(const std::string& path);
+MachineProfile load_profile(const std::string& path,
+                            const std::vector<std::string>& base_dirs = {});
 
 } // namespace ncjoule

@@ -47,6 +47,7 @@ struct OperationTotals {
   double time_s = 0;
   double energy_j = 0;
   double cost = 0;
+  TimeSplit time; // what its time is spent on
 };
 
 struct ProgramTotals {
@@ -67,7 +68,9 @@ struct ProgramTotals {
   bool stock_guessed = false; // a setup's stock is the box of its own cuts, not one given
   GuessedFigures guess;       // the range of the figures that guess sets
   double peak_power_w = 0;
-  bool inch = false; // the program is in inches (Estimate::inch)
+  bool inch = false;    // the program is in inches (Estimate::inch)
+  TimeSplit time;       // what the time is spent on (Estimate::time)
+  bool removal = false; // removal simulated: cutting and air cutting told apart
 };
 ProgramTotals program_totals(const Estimate& estimate);
 
@@ -97,10 +100,17 @@ std::vector<RankedProgram> rank_programs(std::vector<ProgramTotals> programs,
 // the best itself.
 std::string explain_difference(const RankedProgram& ranked, std::size_t max_components = 3);
 // The same by operation: the operations (matched with the best's by name) whose time, energy
-// or cost (by `by`) differs most, e.g. "2D Adaptive1 +41.0 s, Drill1 only here +12.3 s".
+// or cost (by `by`) differs most, each with the cause in time where its time differs, e.g.
+// "2D Adaptive1 +54.8 kJ (cutting +25.0 s, air cutting +5.0 s), Drill1 (only here) +12.3 kJ".
 // Empty for the best itself.
 std::string explain_by_operation(const RankedProgram& ranked, const RankedProgram& best, RankBy by,
                                  std::size_t max_operations = 3);
+
+// A difference in time by what it is spent on, largest first, e.g. "cutting +25.0 s, air
+// cutting +5.0 s" (`here` minus `best`; parts under 0.05 s left out; feed moves as one part
+// when removal told cutting from air cutting in neither). Empty when nothing differs.
+std::string explain_time_difference(const TimeSplit& here, const TimeSplit& best, bool removal,
+                                    std::size_t max_parts = 3);
 
 // The comparison as JSON (docs/report.md).
 // What makes a ranking doubtful: alternatives that remove different volumes (not the same part,

@@ -67,9 +67,11 @@ LoadedPlan plan_with_load_feeds(OptimizeInput input, const OptimizeOptions& opti
       LoadAt& at = loads[e.line];
       const double f0 = at.feed_mm_min > 0 ? at.feed_mm_min : e.was_feed_mm_min;
       double exponent = at.exponent;
+      // Within 0.5 (k_c as the chip thickness to -0.5, beyond Kienzle's mc of common materials)
+      // and 1.5: a load that barely follows the feed is not chased with a feed far lower.
       if (f0 > 0 && at.load > 0 && std::abs(std::log(e.feed_mm_min / f0)) > 1e-3)
         exponent =
-            std::clamp(std::log(it->second / at.load) / std::log(e.feed_mm_min / f0), 0.2, 1.5);
+            std::clamp(std::log(it->second / at.load) / std::log(e.feed_mm_min / f0), 0.5, 1.5);
       at = LoadAt{it->second, e.feed_mm_min, exponent};
     }
     if (out.over_share == 0 || pass >= passes) break;

@@ -98,6 +98,7 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
   plan.air_feed_mm_min = air;
   plan.load_share = options.load_share;
   plan.max_feed_factor = options.max_feed_factor;
+  plan.min_feed_factor = options.min_feed_factor;
   plan.finish_depth_mm = options.finish_depth_mm;
   const bool inch = plan.inch = std::any_of(in.commands->begin(), in.commands->end(),
                                             [](const CanonCommand& c) { return c.state.inch; });
@@ -161,6 +162,8 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
               const double base = at.feed_mm_min > 0 ? at.feed_mm_min : c.state.feed;
               double target = base * std::pow(options.load_share / at.load, 1 / at.exponent);
               target = std::min(target, c.state.feed * options.max_feed_factor);
+              const bool floored = target < c.state.feed * options.min_feed_factor;
+              if (floored) target = c.state.feed * options.min_feed_factor;
               target = std::min(target, capped_feed(c, in.kinematics, target));
               const double feed = writable_feed(target, inch);
               const bool lower = feed < c.state.feed && feed > 0;
@@ -177,6 +180,7 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
                                                    in.dialect, edit, inch)) {
                   edits[c.line] = edit;
                   ++(lower ? plan.load_lowered : plan.load_raised);
+                  plan.load_floored += floored;
                 } else {
                   ++plan.too_long;
                 }

@@ -98,16 +98,17 @@ std::vector<std::string> header_lines(const Dialect& dialect, const OptimizePlan
              "MARGIN.",
          dialect, width);
   if (load) {
-    char share[32], factor[32], depth[32];
+    char share[32], factor[32], floor[32], depth[32];
     std::snprintf(share, sizeof share, "%.0f%%", 100 * plan.load_share);
     std::snprintf(factor, sizeof factor, "%.2f", plan.max_feed_factor);
+    std::snprintf(floor, sizeof floor, "%.2f", plan.min_feed_factor);
     std::snprintf(depth, sizeof depth, "%.*f", plan.inch ? 3 : 2,
                   plan.inch ? plan.finish_depth_mm / 25.4 : plan.finish_depth_mm);
     wrap(out,
          "LOAD - " + std::to_string(load) + " CUTTING FEEDS SCALED, " +
              std::to_string(plan.load_lowered) + " LOWERED, " + std::to_string(plan.load_raised) +
              " RAISED, SO THE PREDICTED CUTTING POWER STAYS WITHIN " + share +
-             " OF THE SPINDLE RATING, AT MOST " + factor +
+             " OF THE SPINDLE RATING, AT MOST " + factor + " AND AT LEAST " + floor +
              " TIMES THE PROGRAMMED FEED AND WITHIN THE AXIS LIMITS. FINISHING PASSES, UNDER " +
              depth + " " + unit + " DEEP OR WIDE, UNCHANGED.",
          dialect, width);

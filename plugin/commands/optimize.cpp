@@ -41,6 +41,7 @@ struct OptimizeCliOptions {
   bool load_feeds = false;
   double load_share_pct = 70;
   double max_feed_factor = 1.3;
+  double min_feed_factor = 0.25;
   double finish_depth_mm = 0.5;
   double margin_mm = 1.0;
   double air_feed_mm_min = 0;
@@ -207,6 +208,7 @@ int run_optimize(const OptimizeCliOptions& o) {
   rules.load_feeds = o.load_feeds;
   rules.load_share = o.load_share_pct / 100;
   rules.max_feed_factor = o.max_feed_factor;
+  rules.min_feed_factor = o.min_feed_factor;
   rules.finish_depth_mm = o.finish_depth_mm;
   // Rule c starts from each line's predicted load at its programmed feed.
   const std::map<int, double> rpm = spindle_rpm_by_line(commands);
@@ -314,17 +316,20 @@ int run_optimize(const OptimizeCliOptions& o) {
     if (o.load_feeds)
       std::printf(" \"load_feeds\": {\"lowered\": %zu, \"raised\": %zu, \"finishing_passes\": "
                   "%zu, \"share\": %.6g, \"max_feed_factor\": %.6g, \"finish_depth_mm\": %.6g, "
-                  "\"passes\": %d, \"over_share\": %zu},\n",
+                  "\"passes\": %d, \"over_share\": %zu, \"min_feed_factor\": %.6g, "
+                  "\"floored\": %zu},\n",
                   plan.load_lowered, plan.load_raised, plan.finishing_passes, plan.load_share,
-                  plan.max_feed_factor, plan.finish_depth_mm, loaded.passes, loaded.over_share);
+                  plan.max_feed_factor, plan.finish_depth_mm, loaded.passes, loaded.over_share,
+                  plan.min_feed_factor, plan.load_floored);
     std::printf(" \"comparison\": ");
     std::fflush(stdout);
     std::cout << comparison_json(ranked, machine, 1, RankBy::Time) << "}\n";
   } else {
     print_savings(before, *after, plan, written, o.output);
     if (loaded.over_share)
-      std::printf("  %zu load-scaled blocks are still predicted above the share after %d passes\n",
-                  loaded.over_share, loaded.passes);
+      std::printf("  %zu load-scaled blocks are still predicted above the share after %d passes "
+                  "(%zu held at %.2f times their programmed feed)\n",
+                  loaded.over_share, loaded.passes, plan.load_floored, plan.min_feed_factor);
   }
   std::cout.flush();
   return kOk;
@@ -355,6 +360,10 @@ const Registration registration([](CLI::App& app, int& exit_code) {
                   "With --load-feeds: a raised feed stays at most this times the programmed one "
                   "(default 1.3; 1: only lower)")
       ->check(CLI::Range(1.0, 10.0));
+  cmd->add_option("--min-feed-factor", options->min_feed_factor,
+                  "With --load-feeds: a lowered feed stays at least this times the programmed "
+                  "one (default 0.25)")
+      ->check(CLI::Range(0.01, 1.0));
   cmd->add_option("--finish-depth", options->finish_depth_mm,
                   "With --load-feeds: cuts shallower or narrower than this (mm) are finishing "
                   "passes, never changed (default 0.5)")

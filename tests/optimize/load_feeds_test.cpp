@@ -240,6 +240,20 @@ TEST_CASE("load feeds put the original F back for a block that relies on it") {
   CHECK(out.find("\nF5000. (NCJOPT RESTORE)\nG1 Z5.\n") != std::string::npos);
 }
 
+TEST_CASE("a lowered feed stays at least the floor's share of the programmed one") {
+  OptimizeOptions options = load_only();
+  options.min_feed_factor = 0.9; // the slot would need about 0.44
+  const Run run = optimize_loads(options);
+  const BlockEdit* slot = edit_on(run.loaded.plan, 8);
+  REQUIRE(slot);
+  CHECK(slot->feed_mm_min == doctest::Approx(4500));
+  CHECK(run.loaded.plan.load_floored == 1);
+  // Still above the share: said, after the passes allowed.
+  CHECK(run.loaded.over_share == 1);
+  CHECK(run.loaded.passes == 4);
+  CHECK(run.loaded.text.text.find("AT MOST 1.30 AND AT LEAST 0.90 TIMES") != std::string::npos);
+}
+
 TEST_CASE("without load feeds, cutting blocks are never changed") {
   OptimizeOptions off = load_only();
   off.load_feeds = false;

@@ -51,6 +51,11 @@ struct OptimizeOptions {
   bool load_feeds = false;
   double load_share = 0.7;      // of the spindle's rating at the block's speed
   double max_feed_factor = 1.3; // a raised feed stays at most this times the programmed one
+  // A lowered feed stays at least this times the programmed one: a cut that would need less is
+  // one whose feeds and speeds are wrong (the estimate warns of it), and a block whose predicted
+  // load does not follow its feed (a short block the accelerations hold below its feed, a load
+  // the grid's columns make uneven) is not chased down to nothing.
+  double min_feed_factor = 0.25;
   // A cut shallower than this (its depth below the material's top), or narrower (its removed
   // volume per length over its depth), is a finishing pass: its feed never changes (mm).
   double finish_depth_mm = 0.5;
@@ -110,8 +115,9 @@ struct OptimizePlan {
   std::size_t too_long = 0;
   bool inch = false; // the program writes inches (its feeds in in/min)
   // Rule c, as used, and what it found.
-  double load_share = 0, max_feed_factor = 0, finish_depth_mm = 0;
+  double load_share = 0, max_feed_factor = 0, min_feed_factor = 0, finish_depth_mm = 0;
   std::size_t load_lowered = 0, load_raised = 0;
+  std::size_t load_floored = 0;     // of the lowered, held at min_feed_factor
   std::size_t finishing_passes = 0; // cutting blocks left as they are as finishing passes
 };
 

@@ -5,7 +5,8 @@
 time, energy and cost of the original and the optimized program, the air-cut time of each, the
 changed blocks (air feeds / rapids) and restore blocks, the removed volume's difference and the
 collisions before and after, and how long optimize took. A program optimize refuses or cannot
-improve says so.
+improve says so. With `-- --load-feeds`, the air/rapid column leaves out the load-scaled blocks,
+and a column gives those lowered and raised, and the finishing passes left as they were.
 
 Usage: bench/optimize.py NCJOULE CORPUS_DIR [--markdown] [-- extra ncjoule arguments]
 
@@ -71,7 +72,11 @@ def main():
     head = ("program", "time s", "opt. s", "time", "air s", "opt. air s", "energy kJ", "opt. kJ",
             "cost", "opt. cost", "changed (air/rapid)", "restores", "volume", "collisions",
             "run s")
-    fmt = "%-40s %9s %9s %7s %8s %10s %9s %9s %8s %9s %19s %8s %8s %10s %6s"
+    load_feeds = "--load-feeds" in extra
+    if load_feeds:
+        head = head[:-1] + ("load lowered/raised/finishing", "run s")
+    fmt = "%-40s %9s %9s %7s %8s %10s %9s %9s %8s %9s %19s %8s %8s %10s" + (
+        " %29s" if load_feeds else "") + " %6s"
     if markdown:
         print("| " + " | ".join(head) + " |")
         print("|" + "---|" * len(head))
@@ -109,9 +114,16 @@ def main():
                  "%+.1f%%" % ((b["time_s"] / a["time_s"] - 1) * 100), "%.1f" % a["air_cut_s"],
                  "%.1f" % b["air_cut_s"], "%.2f" % (a["energy_j"] / 1000),
                  "%.2f" % (b["energy_j"] / 1000), "%.4f" % a["cost"], "%.4f" % b["cost"],
-                 "%d (%d/%d)" % (r["changed_blocks"], r["air_feeds"], r["rapids"]),
+                 "%d (%d/%d)" % (r["changed_blocks"] - r.get("load_feeds", {}).get("lowered", 0)
+                                 - r.get("load_feeds", {}).get("raised", 0), r["air_feeds"],
+                                 r["rapids"]),
                  "%d" % r["restore_blocks"], "%+.3f%%" % dv,
-                 "%d -> %d" % tuple(r["collisions"]), "%.1f" % seconds)
+                 "%d -> %d" % tuple(r["collisions"]))
+        if load_feeds:
+            load = r.get("load_feeds", {})
+            cells += ("%d/%d/%d" % (load.get("lowered", 0), load.get("raised", 0),
+                                    load.get("finishing_passes", 0)),)
+        cells += ("%.1f" % seconds,)
         print(("| " + " | ".join(cells) + " |") if markdown else fmt % cells)
     print("%d program(s) failed the checks" % failed)
 

@@ -51,7 +51,7 @@ std::optional<std::string> rewrite_block(std::string_view line, const Dialect& d
     if (block->has('G')) return std::nullopt;
     insert_g1();
     mark += "RESTORE G1";
-  } else if (edit.rule == EditRule::AirFeed) {
+  } else if (changes_feed(edit.rule)) {
     if (edit.insert_g1) {
       if (block->has('G')) return std::nullopt;
       insert_g1();
@@ -59,9 +59,10 @@ std::optional<std::string> rewrite_block(std::string_view line, const Dialect& d
     const std::string feed = format_feed(edit.feed_mm_min, inch);
     if (const Word* f = block->find('F'))
       splices.push_back({f->number, f->end, feed});
-    else
+    else if (!edit.modal_feed) // else the block before set this feed
       splices.push_back({block->code_end, block->code_end, " F" + feed});
-    mark += "AIR F" + feed + " WAS F" + format_feed(edit.was_feed_mm_min, inch);
+    mark += std::string(edit.rule == EditRule::LoadFeed ? "LOAD" : "AIR") + " F" + feed + " WAS F" +
+            format_feed(edit.was_feed_mm_min, inch);
   } else {
     if (const Word* g = block->find('G')) {
       splices.push_back({g->number, g->end, std::string(g->end - g->number, '0')});

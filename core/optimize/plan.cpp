@@ -77,6 +77,8 @@ const char* edit_rule_name(EditRule rule) {
     return "air";
   case EditRule::RapidLink:
     return "rapid";
+  case EditRule::LoadFeed:
+    return "load";
   case EditRule::RestoreG1:
     break;
   }
@@ -94,6 +96,10 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
     for (const AxisLimits& axis : in.kinematics.axes)
       air = std::max(air, axis.max_feed_mm_s * 60);
   plan.air_feed_mm_min = air;
+  plan.load_share = options.load_share;
+  plan.max_feed_factor = options.max_feed_factor;
+  plan.min_feed_factor = options.min_feed_factor;
+  plan.finish_depth_mm = options.finish_depth_mm;
   const bool inch = plan.inch = std::any_of(in.commands->begin(), in.commands->end(),
                                             [](const CanonCommand& c) { return c.state.inch; });
 
@@ -121,17 +127,71 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
     const auto tool_it = in.tools->find(c.state.tool);
     const Tool* tool = tool_it != in.tools->end() ? &tool_it->second : nullptr;
     if (is_feed_move(c.kind)) ++plan.feed_moves;
+    bool removed = false; // the move's removal is done (rule c asks it for the cut's depth)
     if (c.kind == CanonKind::Feed && tool && tool->diameter_mm > 0 && c.start_known &&
         c.machine_axes == 0 && !rotary_moves(c) && move_length(c) > 1e-6) {
       const double reach = std::max(tool->radius(), tool->shank_diameter_mm / 2);
-      if (clear(point(c.start), point(c.end), reach)) {
-        ++plan.clear_moves;
-        const LineUse& u = use[c.line];
+      const LineUse& u = use[c.line];
+      auto simple_block = [&]() -> std::optional<SimpleBlock> {
+        if (u.moves == 1 && !u.elsewhere && c.state.feed_mode == FeedMode::UnitsPerMinute &&
+            c.state.feed > 0 && std::size_t(c.line) < in.source->lines.size())
+          return read_simple_block(in.source->line_text(std::size_t(c.line)), in.dialect);
+        return std::nullopt;
+      };
+      const bool is_clear = clear(point(c.start), point(c.end), reach);
+      if (!is_clear && options.load_feeds && in.loads) {
+        const auto load = in.loads->find(c.line);
         const std::optional<SimpleBlock> block =
-            u.moves == 1 && !u.elsewhere && c.state.feed_mode == FeedMode::UnitsPerMinute &&
-                    c.state.feed > 0 && std::size_t(c.line) < in.source->lines.size()
-                ? read_simple_block(in.source->line_text(std::size_t(c.line)), in.dialect)
-                : std::nullopt;
+            load != in.loads->end() && load->second.load > 0 ? simple_block() : std::nullopt;
+        if (block) {
+          // Rule c: the cut's depth below the material's top, and its width (volume per length
+          // over the depth), from this move's own removal.
+          std::vector<double> volumes, tops;
+          engine->remove_steps({RemovalStep{tool, point(c.start), point(c.end)}}, volumes, &tops);
+          removed = true;
+          const double volume = volumes.empty() ? 0 : volumes[0];
+          const double top = tops.empty() ? std::nan("") : tops[0];
+          const double depth = top - std::min(c.start.z, c.end.z);
+          const double xy = std::hypot(c.end.x - c.start.x, c.end.y - c.start.y);
+          const double width = xy > 1e-6 && depth > 0 ? volume / (xy * depth) : tool->diameter_mm;
+          if (volume > 0 && std::isfinite(top)) {
+            if (!(depth >= options.finish_depth_mm) || !(width >= options.finish_depth_mm)) {
+              ++plan.finishing_passes;
+            } else {
+              const LoadAt& at = load->second;
+              const double base = at.feed_mm_min > 0 ? at.feed_mm_min : c.state.feed;
+              double target = base * std::pow(options.load_share / at.load, 1 / at.exponent);
+              target = std::min(target, c.state.feed * options.max_feed_factor);
+              const bool floored = target < c.state.feed * options.min_feed_factor;
+              if (floored) target = c.state.feed * options.min_feed_factor;
+              target = std::min(target, capped_feed(c, in.kinematics, target));
+              const double feed = writable_feed(target, inch);
+              const bool lower = feed < c.state.feed && feed > 0;
+              const bool raise = feed >= c.state.feed * 1.05;
+              if (lower || raise) {
+                BlockEdit edit;
+                edit.line = c.line;
+                edit.rule = EditRule::LoadFeed;
+                edit.feed_mm_min = feed;
+                edit.was_feed_mm_min = c.state.feed;
+                edit.has_f_word = block->has('F');
+                edit.has_motion_word = block->has('G');
+                if (optimize_detail::rewrite_block(in.source->line_text(std::size_t(c.line)),
+                                                   in.dialect, edit, inch)) {
+                  edits[c.line] = edit;
+                  ++(lower ? plan.load_lowered : plan.load_raised);
+                  plan.load_floored += floored;
+                } else {
+                  ++plan.too_long;
+                }
+              }
+            }
+          }
+        }
+      }
+      if (is_clear) {
+        ++plan.clear_moves;
+        const std::optional<SimpleBlock> block = simple_block();
         if (block) {
           ++plan.simple_clear_moves;
           BlockEdit edit;
@@ -184,7 +244,7 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
         }
       }
     }
-    if (tool && tool->diameter_mm > 0) remove_move(*engine, *tool, c, chord);
+    if (tool && tool->diameter_mm > 0 && !removed) remove_move(*engine, *tool, c, chord);
   }
 
   // What a changed block leaves different in the modal state is put back right after it when a
@@ -199,7 +259,12 @@ OptimizePlan plan_optimization(const OptimizeInput& in, const OptimizeOptions& o
     if (it != edits.end()) {
       if (c.kind != CanonKind::Feed) continue;
       BlockEdit& e = it->second;
-      if (e.rule == EditRule::AirFeed) {
+      if (changes_feed(e.rule)) {
+        // Load blocks in a row at the same feed share the first one's F.
+        if (e.rule == EditRule::LoadFeed && pending_f && !e.has_f_word &&
+            edits[f_origin].rule == EditRule::LoadFeed &&
+            edits[f_origin].feed_mm_min == e.feed_mm_min)
+          e.modal_feed = true;
         // A raised feed still moves on G1: on its own word, or on the modal one, which it then
         // writes (or a block of its own puts back where the line would be too long).
         if (pending_g1 && !e.has_motion_word) {

@@ -72,15 +72,17 @@ std::vector<std::string> header_lines(const Dialect& dialect, const OptimizePlan
   char number[32];
   std::snprintf(number, sizeof number, "%.*f", plan.inch ? 3 : 2, margin);
   std::vector<std::string> out;
-  std::size_t air = 0, rapid = 0;
+  std::size_t air = 0, rapid = 0, load = 0;
   for (const BlockEdit& e : plan.edits) {
     if (e.rule == EditRule::AirFeed) ++air;
     if (e.rule == EditRule::RapidLink) ++rapid;
+    if (e.rule == EditRule::LoadFeed) ++load;
   }
   wrap(out,
        "OPTIMIZED COPY BY NCJOULE OPTIMIZE, " + std::to_string(changed.size()) +
-           " BLOCKS CHANGED, " + std::to_string(restores) +
-           " RESTORE BLOCKS ADDED. NOTHING THAT CUTS WAS CHANGED.",
+           " BLOCKS CHANGED, " + std::to_string(restores) + " RESTORE BLOCKS ADDED. " +
+           (load ? "OF WHAT CUTS ONLY THE FEEDS MARKED LOAD CHANGED."
+                 : "NOTHING THAT CUTS WAS CHANGED."),
        dialect, width);
   if (air)
     wrap(out,
@@ -95,6 +97,22 @@ std::vector<std::string> header_lines(const Dialect& dialect, const OptimizePlan
              " CLEAR RETRACTS AND LINKS RUN AS G0, THE RAPID PATH CHECKED CLEAR BY THE SAME "
              "MARGIN.",
          dialect, width);
+  if (load) {
+    char share[32], factor[32], floor[32], depth[32];
+    std::snprintf(share, sizeof share, "%.0f%%", 100 * plan.load_share);
+    std::snprintf(factor, sizeof factor, "%.2f", plan.max_feed_factor);
+    std::snprintf(floor, sizeof floor, "%.2f", plan.min_feed_factor);
+    std::snprintf(depth, sizeof depth, "%.*f", plan.inch ? 3 : 2,
+                  plan.inch ? plan.finish_depth_mm / 25.4 : plan.finish_depth_mm);
+    wrap(out,
+         "LOAD - " + std::to_string(load) + " CUTTING FEEDS SCALED, " +
+             std::to_string(plan.load_lowered) + " LOWERED, " + std::to_string(plan.load_raised) +
+             " RAISED, SO THE PREDICTED CUTTING POWER STAYS WITHIN " + share +
+             " OF THE SPINDLE RATING, AT MOST " + factor + " AND AT LEAST " + floor +
+             " TIMES THE PROGRAMMED FEED AND WITHIN THE AXIS LIMITS. FINISHING PASSES, UNDER " +
+             depth + " " + unit + " DEEP OR WIDE, UNCHANGED.",
+         dialect, width);
+  }
   if (restores)
     wrap(out,
          "RESTORE - THE ORIGINAL F PUT BACK RIGHT AFTER A CHANGED BLOCK, G1 ON THE BLOCK THAT "
@@ -135,19 +153,26 @@ OptimizedText write_optimized(const SourceFile& source, const Dialect& dialect,
   result.restore_blocks += restores.size();
   if (rewritten.empty()) {
     result.text = source.text;
+    for (std::size_t i = 0; i < source.lines.size(); ++i)
+      result.original_line.push_back(int(i));
     return result;
   }
   const std::string eol = file_eol(source);
   const std::size_t header_at = header_position(source);
   std::string& out = result.text;
   out.reserve(source.text.size() + 64 * (rewritten.size() + restores.size() + 8));
+  std::vector<int>& origin = result.original_line;
+  origin.reserve(source.lines.size() + restores.size() + 16);
   auto put_header = [&] {
-    for (const std::string& line : header_lines(dialect, plan, changed, result.restore_blocks))
+    for (const std::string& line : header_lines(dialect, plan, changed, result.restore_blocks)) {
       out += line + eol;
+      origin.push_back(-1);
+    }
   };
   for (std::size_t i = 0; i < source.lines.size(); ++i) {
     const LineSpan& l = source.lines[i];
     if (i == header_at) put_header();
+    origin.push_back(int(i));
     const auto r = rewritten.find(int(i));
     if (r == rewritten.end()) {
       out.append(source.text, l.begin, l.length + l.eol_length);
@@ -157,8 +182,10 @@ OptimizedText write_optimized(const SourceFile& source, const Dialect& dialect,
     const std::string own_eol =
         l.eol_length ? source.text.substr(l.begin + l.length, l.eol_length) : std::string();
     out += own_eol;
-    if (const auto s = restores.find(int(i)); s != restores.end())
+    if (const auto s = restores.find(int(i)); s != restores.end()) {
       out += (own_eol.empty() ? eol : std::string()) + s->second + own_eol;
+      origin.push_back(-1);
+    }
   }
   if (header_at >= source.lines.size()) {
     if (!source.lines.empty() && source.lines.back().eol_length == 0) out += eol;

@@ -1,17 +1,21 @@
 // `ncjoule optimize PROGRAM [--stock ...] [-m PROFILE] -o OUT`: writes a faster alternative of a
 // posted program, changing only feed moves that run clear of the in-process stock (air feeds,
-// retracts and links as rapids), and prints what that saves by operation (docs/optimize.md).
+// retracts and links as rapids) and, with --load-feeds, the feeds of cutting blocks to a spindle
+// load target, and prints what that saves by operation (docs/optimize.md).
 //
 // Only with a known stock (given, or read from the CAM): what is clear of a guessed stock need
 // not be clear of the real one. The original is never written; the optimized text is estimated
 // again with the same stock before it is written, and nothing is written unless it removes the
-// same volume (within 0.5%), hits no more rapids into the stock and takes no longer.
+// same volume (within 0.5%), hits no more rapids into the stock and takes no longer (unless
+// --load-feeds lowered a feed to keep a cut within the spindle's rating: then it says so).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +39,10 @@ struct OptimizeCliOptions {
   bool no_air_feeds = false;
   bool no_rapid_links = false;
   bool load_feeds = false;
+  double load_share_pct = 70;
+  double max_feed_factor = 1.3;
+  double min_feed_factor = 0.25;
+  double finish_depth_mm = 0.5;
   double margin_mm = 1.0;
   double air_feed_mm_min = 0;
   bool json = false;
@@ -82,19 +90,30 @@ std::string money(double value, const std::string& currency) {
 
 void print_savings(const Estimate& before, const Estimate& after, const OptimizePlan& plan,
                    const OptimizedText& written, const std::string& output) {
-  std::size_t air = 0, rapid = 0;
+  std::size_t air = 0, rapid = 0, load = 0;
   for (const BlockEdit& e : plan.edits) {
     if (e.rule == EditRule::AirFeed) ++air;
     if (e.rule == EditRule::RapidLink) ++rapid;
+    if (e.rule == EditRule::LoadFeed) ++load;
   }
   const ProgramTotals a = program_totals(before), b = program_totals(after);
-  std::printf("%s: %zu blocks changed (%zu air feeds, %zu rapids), %zu restore blocks added; "
-              "wrote %s\n",
-              printable(before.file).c_str(), written.changed_blocks, air, rapid,
+  std::printf("%s: %zu blocks changed (%zu air feeds, %zu rapids, %zu load feeds), %zu restore "
+              "blocks added; wrote %s\n",
+              printable(before.file).c_str(), written.changed_blocks, air, rapid, load,
               written.restore_blocks, printable(output).c_str());
   std::printf("  %zu feed moves, %zu clear of the stock by the tool radius plus %.2f mm, %zu of "
               "them in blocks that may change\n",
               plan.feed_moves, plan.clear_moves, plan.margin_mm, plan.simple_clear_moves);
+  if (load || plan.finishing_passes)
+    std::printf("  load feeds: %zu lowered and %zu raised to keep the predicted cutting power "
+                "within %.0f%% of the spindle's rating (at most %.2f times the programmed feed); "
+                "%zu finishing passes (under %.2f mm deep or wide) left as they were\n",
+                plan.load_lowered, plan.load_raised, 100 * plan.load_share, plan.max_feed_factor,
+                plan.finishing_passes, plan.finish_depth_mm);
+  if (after.time_s > before.time_s)
+    std::printf("  the time grew by %.1f s: %zu cutting feeds were lowered to keep their predicted "
+                "cutting power within %.0f%% of the spindle's rating\n",
+                after.time_s - before.time_s, plan.load_lowered, 100 * plan.load_share);
   if (plan.too_long)
     std::printf("  %zu left as they were: the marked block would pass the line length\n",
                 plan.too_long);
@@ -133,11 +152,6 @@ int run_optimize(const OptimizeCliOptions& o) {
                  "the optimized program's name with -o OUT\n";
     return kUsage;
   }
-  if (o.load_feeds) {
-    std::cerr << "ncjoule optimize: --load-feeds (feeds to a load target) is not built yet; run "
-                 "without it\n";
-    return kUsage;
-  }
   if (o.output.empty() || o.output == "-") {
     std::cerr << "ncjoule optimize: give the optimized program's file with -o OUT\n";
     return kUsage;
@@ -153,6 +167,15 @@ int run_optimize(const OptimizeCliOptions& o) {
   const std::optional<EstimateOptions> options =
       estimate_options(o.settings, o.file, machine, status);
   if (!options) return status;
+  if (o.load_feeds && !(machine.power.spindle_rated_w > 0) &&
+      machine.power.spindle_power_curve.empty()) {
+    std::cerr << "ncjoule optimize: --load-feeds needs the spindle's rating: the machine profile "
+                 "gives no spindle_rated_w (docs/machine-profiles.md)\n";
+    return kInputError;
+  }
+  if (o.load_feeds && machine.power.placeholder_spindle)
+    std::cerr << "ncjoule optimize: warning: the load target is a share of a spindle rating that "
+              << kPlaceholderSpindleAdvice << "\n";
   const auto input =
       read_source(o.file, input_limit_bytes(o.settings), memory_budget_bytes(o.settings));
   if (!input) return kInputError;
@@ -183,6 +206,16 @@ int run_optimize(const OptimizeCliOptions& o) {
   rules.rapid_links = !o.no_rapid_links;
   rules.margin_mm = o.margin_mm;
   rules.air_feed_mm_min = o.air_feed_mm_min;
+  rules.load_feeds = o.load_feeds;
+  rules.load_share = o.load_share_pct / 100;
+  rules.max_feed_factor = o.max_feed_factor;
+  rules.min_feed_factor = o.min_feed_factor;
+  rules.finish_depth_mm = o.finish_depth_mm;
+  // Rule c starts from each line's predicted load at its programmed feed.
+  const std::map<int, double> rpm = spindle_rpm_by_line(commands);
+  std::map<int, LoadAt> loads;
+  for (const auto& [line, load] : mean_spindle_loads(before, rpm))
+    loads[line] = LoadAt{load, 0};
   const std::unique_ptr<StockShape> stock =
       make_box_stock(before.removal->stock_box, before.removal->stock_description);
   OptimizeInput in;
@@ -193,10 +226,27 @@ int run_optimize(const OptimizeCliOptions& o) {
   in.stock = stock.get();
   in.grid = before.removal->grid;
   in.kinematics = machine.kinematics;
-  const OptimizePlan plan = plan_optimization(in, rules);
+  in.loads = &loads;
+  EstimateOptions second = *options;
+  second.progress = progress.callback();
+  if (!second.dialect) second.dialect = before.dialect;
+  // The written text estimated as the check needs it; rule c asks it for the loads it predicts.
+  std::optional<Estimate> after;
+  std::string after_text;
+  auto estimate_written = [&](const OptimizedText& text) {
+    progress.begin(1, o.output);
+    after = estimate_program(make_source(o.output, text.text), machine, second);
+    after_text = text.text;
+  };
+  const LoadsOf loads_of = [&](const OptimizedText& text) {
+    estimate_written(text);
+    return mean_spindle_loads(*after, rpm, &text.original_line);
+  };
+  const LoadedPlan loaded = plan_with_load_feeds(in, rules, loads_of);
+  const OptimizePlan& plan = loaded.plan;
+  const OptimizedText& written = loaded.text;
   commands.clear();
   commands.shrink_to_fit();
-  const OptimizedText written = write_optimized(*input, before.dialect, plan);
   if (written.changed_blocks == 0) {
     progress.finish();
     if (o.json) {
@@ -213,17 +263,13 @@ int run_optimize(const OptimizeCliOptions& o) {
   }
 
   // The proof before anything is written: the optimized text, estimated with the same stock.
-  progress.begin(1, o.output);
-  EstimateOptions second = *options;
-  second.progress = progress.callback();
-  if (!second.dialect) second.dialect = before.dialect;
-  const Estimate after = estimate_program(make_source(o.output, written.text), machine, second);
+  if (!after || after_text != written.text) estimate_written(written);
   progress.finish();
   std::vector<std::string> failed;
-  if (after.failed || !after.removal) {
+  if (after->failed || !after->removal) {
     failed.push_back("the optimized program could not be estimated");
   } else {
-    const double v0 = before.removal->removed_mm3, v1 = after.removal->removed_mm3;
+    const double v0 = before.removal->removed_mm3, v1 = after->removal->removed_mm3;
     if (std::abs(v1 - v0) > 0.005 * std::max(v0, 1e-9)) {
       char text[160];
       std::snprintf(text, sizeof text,
@@ -232,12 +278,15 @@ int run_optimize(const OptimizeCliOptions& o) {
                     v1, v0);
       failed.push_back(text);
     }
-    if (collisions(after) > collisions(before))
-      failed.push_back("it has " + std::to_string(collisions(after)) +
+    if (collisions(*after) > collisions(before))
+      failed.push_back("it has " + std::to_string(collisions(*after)) +
                        " rapids into the stock where the original has " +
                        std::to_string(collisions(before)));
-    if (after.time_s > before.time_s) failed.push_back("it takes longer than the original");
-    if (refusal(after, second).size()) failed.push_back("its stock is not the original's");
+    // A load feed lowered to keep a cut within the rating may make the program longer: the
+    // output says so.
+    if (after->time_s > before.time_s && plan.load_lowered == 0)
+      failed.push_back("it takes longer than the original");
+    if (refusal(*after, second).size()) failed.push_back("its stock is not the original's");
   }
   if (!failed.empty()) {
     std::cerr << "ncjoule optimize: the optimized program failed its checks, nothing was "
@@ -251,22 +300,37 @@ int run_optimize(const OptimizeCliOptions& o) {
   if (o.json) {
     // What changed and what the checks saw, then the two programs as compare --json gives them.
     std::vector<RankedProgram> ranked =
-        rank_programs({program_totals(before), program_totals(after)}, RankBy::Time);
-    std::size_t air = 0;
-    for (const BlockEdit& e : plan.edits)
+        rank_programs({program_totals(before), program_totals(*after)}, RankBy::Time);
+    std::size_t air = 0, load = 0;
+    for (const BlockEdit& e : plan.edits) {
       air += e.rule == EditRule::AirFeed;
+      load += e.rule == EditRule::LoadFeed;
+    }
     std::printf("{\"changed_blocks\": %zu, \"air_feeds\": %zu, \"rapids\": %zu, "
                 "\"restore_blocks\": %zu, \"feed_moves\": %zu, \"clear_moves\": %zu, "
                 "\"margin_mm\": %.6g, \"removed_mm3\": [%.6f, %.6f], \"time_s\": [%.6f, %.6f], "
-                "\"collisions\": [%zu, %zu],\n \"comparison\": ",
-                written.changed_blocks, air, written.changed_blocks - air, written.restore_blocks,
-                plan.feed_moves, plan.clear_moves, plan.margin_mm, before.removal->removed_mm3,
-                after.removal->removed_mm3, before.time_s, after.time_s, collisions(before),
-                collisions(after));
+                "\"collisions\": [%zu, %zu],\n",
+                written.changed_blocks, air, written.changed_blocks - air - load,
+                written.restore_blocks, plan.feed_moves, plan.clear_moves, plan.margin_mm,
+                before.removal->removed_mm3, after->removal->removed_mm3, before.time_s,
+                after->time_s, collisions(before), collisions(*after));
+    if (o.load_feeds)
+      std::printf(" \"load_feeds\": {\"lowered\": %zu, \"raised\": %zu, \"finishing_passes\": "
+                  "%zu, \"share\": %.6g, \"max_feed_factor\": %.6g, \"finish_depth_mm\": %.6g, "
+                  "\"passes\": %d, \"over_share\": %zu, \"min_feed_factor\": %.6g, "
+                  "\"floored\": %zu},\n",
+                  plan.load_lowered, plan.load_raised, plan.finishing_passes, plan.load_share,
+                  plan.max_feed_factor, plan.finish_depth_mm, loaded.passes, loaded.over_share,
+                  plan.min_feed_factor, plan.load_floored);
+    std::printf(" \"comparison\": ");
     std::fflush(stdout);
     std::cout << comparison_json(ranked, machine, 1, RankBy::Time) << "}\n";
   } else {
-    print_savings(before, after, plan, written, o.output);
+    print_savings(before, *after, plan, written, o.output);
+    if (loaded.over_share)
+      std::printf("  %zu load-scaled blocks are still predicted above the share after %d passes "
+                  "(%zu held at %.2f times their programmed feed)\n",
+                  loaded.over_share, loaded.passes, plan.load_floored, plan.min_feed_factor);
   }
   std::cout.flush();
   return kOk;
@@ -287,7 +351,24 @@ const Registration registration([](CLI::App& app, int& exit_code) {
   cmd->add_flag("--no-rapid-links", options->no_rapid_links,
                 "Leave clear retracts and links as feed moves");
   cmd->add_flag("--load-feeds", options->load_feeds,
-                "Feeds to a spindle load target (not built yet: refused)");
+                "Scale the feeds of cutting blocks so their predicted cutting power stays within "
+                "--load-share of the spindle's rating (off by default)");
+  cmd->add_option("--load-share", options->load_share_pct,
+                  "With --load-feeds: the load target, percent of the spindle's rating (default "
+                  "70)")
+      ->check(CLI::Range(1.0, 100.0));
+  cmd->add_option("--max-feed-factor", options->max_feed_factor,
+                  "With --load-feeds: a raised feed stays at most this times the programmed one "
+                  "(default 1.3; 1: only lower)")
+      ->check(CLI::Range(1.0, 10.0));
+  cmd->add_option("--min-feed-factor", options->min_feed_factor,
+                  "With --load-feeds: a lowered feed stays at least this times the programmed "
+                  "one (default 0.25)")
+      ->check(CLI::Range(0.01, 1.0));
+  cmd->add_option("--finish-depth", options->finish_depth_mm,
+                  "With --load-feeds: cuts shallower or narrower than this (mm) are finishing "
+                  "passes, never changed (default 0.5)")
+      ->check(CLI::Range(0.0, 1000.0));
   cmd->add_option("--margin", options->margin_mm,
                   "Clearance beyond the tool's radius and below its tip, mm (default 1; at least "
                   "two grid cells)")

@@ -7,6 +7,9 @@ known box stock.
 - It removes the same volume, takes less time, gains no collision (estimate --json on both).
 - A guessed stock, --in-place and -o naming the program are refused; the original is
   byte-identical after every run; strip leaves the NCJOPT marks.
+- --load-feeds on a program with a heavy slot and a light pass: rs274 runs the same end points;
+  the motions that differ are the LOAD-marked blocks, the slot slower, the pass at most 1.3 times
+  faster; the time that grows is allowed, and said.
 Environment: NCJOULE (the program), NCJOULE_SOURCE_DIR (the repository)."""
 import atexit
 import hashlib
@@ -48,6 +51,33 @@ G1 Y30 F500
 Y35
 G0 Z5
 M5
+M30
+%
+"""
+
+# A 12 mm end mill: a full slot 8 mm deep at F5000 (above 70% of the 5.5 kW rating), a pass 2 mm
+# wide at F1000 (far below it), a 0.2 mm skim (a finishing pass) and a link in air at F700.
+LOAD_PROGRAM = """%
+(LOAD TEST)
+G21 G90 G17
+(T1 D=12. CR=0. - FLAT END MILL)
+T1 M6
+S8000 M3
+G0 X-10. Y10. Z5.
+G1 Z-8. F5000.
+X50.
+G0 Z5.
+G0 X-10. Y-4.
+G1 Z-3. F1000.
+X20.
+X50.
+G0 Z5.
+G0 X-10. Y15.
+G1 Z-0.2 F800.
+X50.
+G1 Z5.
+X60. F700.
+G0 Z20.
 M30
 %
 """
@@ -163,6 +193,65 @@ check(r.returncode == 1, "no -o is refused")
 check(digest(program) == before, "the original is byte-identical after every run")
 leftovers = [n for n in os.listdir(work) if n.startswith(".")]
 check(not leftovers, f"no temporary file is left ({leftovers})")
+
+# Rule c, feeds to a load target, with the other rules off.
+load_program = os.path.join(work, "load.ngc")
+with open(load_program, "w") as f:
+    f.write(LOAD_PROGRAM)
+load_before = digest(load_program)
+loaded = os.path.join(work, "load-opt.ngc")
+r = run("optimize", load_program, "--machine", GENERIC, "--stock", STOCK, "--no-air-feeds",
+        "--no-rapid-links", "--load-feeds", "--json", "-o", loaded)
+check(r.returncode == 0, f"optimize --load-feeds exits 0 ({r.returncode}: {r.stderr[-400:]})")
+check(digest(load_program) == load_before, "the original is byte-identical after --load-feeds")
+try:
+    doc = json.loads(r.stdout)
+except ValueError:
+    doc = {}
+load = doc.get("load_feeds", {})
+check(load.get("lowered") == 1 and load.get("raised") == 2 and load.get("share") == 0.7,
+      f"--json: one feed lowered, two raised, at 70% ({load})")
+check(load.get("finishing_passes", 0) >= 1 and load.get("over_share") == 0,
+      f"--json: the skim is a finishing pass; nothing left above the share ({load})")
+times = doc.get("time_s", [0, 0])
+check(times[1] > times[0], f"the slower slot makes it longer, and it is written ({times})")
+text = open(loaded).read() if os.path.exists(loaded) else ""
+marked = len(re.findall(r"\(NCJOPT LOAD F", text))
+check(marked == 3, f"three blocks marked LOAD ({marked})")
+check("(NCJOPT LOAD - 3 CUTTING FEEDS SCALED, 1 LOWERED, 2 RAISED" in text,
+      "the header lists the rule")
+check("X50. (NCJOPT LOAD F1300. WAS F1000.)" in text,
+      "a block at the same scaled feed as the one before writes no F of its own")
+if shutil.which("rs274"):
+    code_a, a = motions(load_program)
+    code_b, b = motions(loaded)
+    check(code_a == code_b == 0, f"rs274 runs both ({code_a}, {code_b})")
+    check([m[1] for m in a] == [m[1] for m in b], "rs274: the same motion end points in order")
+    # A traverse runs at the rapid rate whatever feed is in force.
+    differ = [(x, y) for x, y in zip(a, b)
+              if x != y and not (x[0] == y[0] == "STRAIGHT_TRAVERSE")]
+    check(len(differ) == marked, f"rs274: the motions that differ are the LOAD blocks ({differ})")
+    check(all(x[0] == y[0] == "STRAIGHT_FEED" for x, y in differ), "rs274: only feeds differ")
+    check(all(y[2] <= 1.3 * x[2] + 1e-9 for x, y in differ),
+          "rs274: no feed above 1.3 times the programmed one")
+    check(any(y[2] < x[2] for x, y in differ), "rs274: the heavy slot runs slower")
+e0, e1 = estimate(load_program), estimate(loaded)
+if check(bool(e0) and bool(e1), "both load programs estimate"):
+    v0, v1 = e0["removed_mm3"], e1["removed_mm3"]
+    check(abs(v1 - v0) <= 0.005 * v0, f"the same volume removed ({v0}, {v1})")
+r = run("optimize", load_program, "--machine", GENERIC, "--stock", STOCK, "--no-air-feeds",
+        "--no-rapid-links", "--load-feeds", "-o", loaded)
+check(r.returncode == 0 and "the time grew" in r.stdout and "rating" in r.stdout,
+      f"it says the time grew and why ({r.stdout[-600:]})")
+# Without the spindle's rating there is no load target: refused, nothing written.
+no_rating = os.path.join(work, "no-rating.toml")
+with open(GENERIC) as f, open(no_rating, "w") as g:
+    g.writelines(line for line in f if not line.startswith("spindle_rated_w"))
+unrated = os.path.join(work, "unrated.ngc")
+r = run("optimize", load_program, "--machine", no_rating, "--stock", STOCK, "--load-feeds", "-o",
+        unrated)
+check(r.returncode == 2 and "spindle_rated_w" in r.stderr and not os.path.exists(unrated),
+      f"--load-feeds without a spindle rating is refused ({r.returncode}: {r.stderr[-300:]})")
 
 if failures:
     print(f"{len(failures)} failure(s)")

@@ -8,7 +8,12 @@
 //    machine's highest feed), capped along the move by each axis's max_feed;
 //  - rapid links: a clear feed move that does not descend (a retract, a link at one height)
 //    becomes G0 where the rapid's own path (the dog-leg shape the planner gives the machine's
-//    rapids, sampled) is clear by the margin as well. A move that descends is never a rapid.
+//    rapids, sampled) is clear by the margin as well. A move that descends is never a rapid;
+//  - load feeds (off by default): a simple cutting block's feed is scaled so that its predicted
+//    cutting power at the spindle stays within a share of the spindle's rating: lowered where the
+//    original passes it, raised where it stays below, never above the programmed feed times a
+//    factor or an axis's max_feed, never on a finishing pass (a cut shallower or narrower than a
+//    set depth), never on a block that removes nothing.
 // Only simple blocks change (G0/G1, X, Y, Z, F and N words, in the main program, run once, at a
 // feed per minute); everything else is copied byte for byte. What the changes leave different in
 // the modal state (a raised F, G0 in place of G1) is put back in a block of its own right after
@@ -21,6 +26,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -41,20 +47,37 @@ struct OptimizeOptions {
   // The air feed (mm/min); 0: the machine's (Kinematics::air_feed_mm_s, else its highest
   // max_feed). Always capped by each axis's max_feed along the move.
   double air_feed_mm_min = 0;
+  // Rule c, feeds to a load target: off by default.
+  bool load_feeds = false;
+  double load_share = 0.7;      // of the spindle's rating at the block's speed
+  double max_feed_factor = 1.3; // a raised feed stays at most this times the programmed one
+  // A lowered feed stays at least this times the programmed one: a cut that would need less is
+  // one whose feeds and speeds are wrong (the estimate warns of it), and a block whose predicted
+  // load does not follow its feed (a short block the accelerations hold below its feed, a load
+  // the grid's columns make uneven) is not chased down to nothing.
+  double min_feed_factor = 0.25;
+  // A cut shallower than this (its depth below the material's top), or narrower (its removed
+  // volume per length over its depth), is a finishing pass: its feed never changes (mm).
+  double finish_depth_mm = 0.5;
 };
 
 enum class EditRule : std::uint8_t {
   AirFeed,   // F raised
   RapidLink, // G1 turned into G0
   RestoreG1, // a block that moved on the modal G1 after a changed block writes G1 itself
+  LoadFeed,  // F scaled to the load target (rule c)
 };
-const char* edit_rule_name(EditRule rule); // "air", "rapid", "restore"
+const char* edit_rule_name(EditRule rule); // "air", "rapid", "restore", "load"
+// The rules that change a block's F.
+inline bool changes_feed(EditRule rule) {
+  return rule == EditRule::AirFeed || rule == EditRule::LoadFeed;
+}
 
 // One changed block.
 struct BlockEdit {
   int line = 0; // 0-based source line
   EditRule rule = EditRule::AirFeed;
-  double feed_mm_min = 0;       // AirFeed: the new feed
+  double feed_mm_min = 0;       // AirFeed, LoadFeed: the new feed
   double was_feed_mm_min = 0;   // the feed the move ran at (mm/min)
   bool has_f_word = false;      // the block writes its own F
   bool has_motion_word = false; // the block writes its own G1
@@ -63,8 +86,22 @@ struct BlockEdit {
   bool restore_feed = false;
   double restore_feed_mm_min = 0;
   bool restore_g1 = false;
-  // AirFeed: the block moved on the modal G1 that an earlier change turned G0: it writes G1.
+  // AirFeed, LoadFeed: the block moved on the modal G1 that an earlier change turned G0: it
+  // writes G1.
   bool insert_g1 = false;
+  // LoadFeed: the block right before (in the order moves run) set the same feed, so this one
+  // writes no F of its own, only its mark.
+  bool modal_feed = false;
+};
+
+// A block's predicted spindle load (its highest cutting power at the spindle over the rating at
+// its speed) when it runs at `feed_mm_min` (0: the programmed feed).
+// The load goes as the feed to `exponent` near it (1: proportional; less where k_c falls as the
+// chip thickens).
+struct LoadAt {
+  double load = 0;
+  double feed_mm_min = 0;
+  double exponent = 1;
 };
 
 struct OptimizePlan {
@@ -77,6 +114,11 @@ struct OptimizePlan {
   // Changes left out because the marked block would pass the dialect's line length.
   std::size_t too_long = 0;
   bool inch = false; // the program writes inches (its feeds in in/min)
+  // Rule c, as used, and what it found.
+  double load_share = 0, max_feed_factor = 0, min_feed_factor = 0, finish_depth_mm = 0;
+  std::size_t load_lowered = 0, load_raised = 0;
+  std::size_t load_floored = 0;     // of the lowered, held at min_feed_factor
+  std::size_t finishing_passes = 0; // cutting blocks left as they are as finishing passes
 };
 
 // What the plan is made from.
@@ -89,6 +131,9 @@ struct OptimizeInput {
   const StockShape* stock = nullptr;          // the known stock, program coordinates (mm)
   GridFrame grid;                             // the grid it is modelled on
   Kinematics kinematics;                      // max feeds, rapid shape and rates
+  // Rule c: each line's predicted spindle load (from the estimate's LineSummary::spindle_load);
+  // a line not in it is not scaled.
+  const std::map<int, LoadAt>* loads = nullptr;
 };
 
 // The changes, by source line. Throws std::invalid_argument when the input is incomplete.
@@ -103,9 +148,44 @@ struct OptimizedText {
   std::string text;
   std::size_t changed_blocks = 0;
   std::size_t restore_blocks = 0;
+  // For each line of `text`, the 0-based line of the original it is (-1: a header or restore
+  // line optimize added).
+  std::vector<int> original_line;
 };
 OptimizedText write_optimized(const SourceFile& source, const Dialect& dialect,
                               const OptimizePlan& plan);
+
+struct Estimate;
+
+// Each line's predicted spindle load in `estimate`, as rule c reads it: its cutting power at the
+// spindle, averaged over the line's time (cutting energy times the cutting efficiency over its
+// time), over the rating at its speed (`rpm_by_line`, the speed its moves ran at). The mean, not
+// LineSummary::spindle_load, the peak: the peak of a step's removal rate on the grid jumps where
+// the tool crosses a column's edge, and does not follow the feed. Keyed by the original's lines
+// through `original_line` where given (OptimizedText::original_line); lines that cut nothing
+// are left out.
+std::map<int, double> mean_spindle_loads(const Estimate& estimate,
+                                         const std::map<int, double>& rpm_by_line,
+                                         const std::vector<int>* original_line = nullptr);
+// The spindle speed each line's moves ran at (the last move's, rpm; 0: spindle off).
+std::map<int, double> spindle_rpm_by_line(const std::vector<CanonCommand>& commands);
+
+// Rule c with the prediction in the loop: the plan from `loads` (each line's predicted load at
+// its programmed feed), written, and the written text's loads asked of `loads_of` (by the
+// original's lines, through OptimizedText::original_line); a scaled block still above the share
+// (the cutting term need not be proportional to the feed: Kienzle's k_c(h) falls as the chip
+// thickens) is scaled again from the load it had, with the exponent its last two loads show, up
+// to `passes` times in all. Without
+// options.load_feeds: plan_optimization and write_optimized once.
+struct LoadedPlan {
+  OptimizePlan plan;
+  OptimizedText text;
+  int passes = 0;
+  std::size_t over_share = 0; // scaled blocks still above the share after the last pass
+};
+using LoadsOf = std::function<std::map<int, double>(const OptimizedText&)>;
+LoadedPlan plan_with_load_feeds(OptimizeInput input, const OptimizeOptions& options,
+                                const LoadsOf& loads_of, int passes = 4);
 
 // The mark every line optimize writes carries ("NCJOPT"): distinct from annotate's "NCJ ..."
 // comments, which strip removes.

@@ -161,9 +161,9 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
   const std::string color = report_detail::program_color(index);
   if (p.measured) html += report_detail::measured_section(id, *p.measured, ops, color);
   html += report_detail::svg_toolpath(id + "-xy", "Toolpath from above (XY), feed moves by power",
-                                      e.path, report_detail::PathView::XY);
+                                      e.path, report_detail::PathView::XY, e.inch);
   html += report_detail::svg_toolpath(id + "-xz", "Toolpath from the front (XZ)", e.path,
-                                      report_detail::PathView::XZ);
+                                      report_detail::PathView::XZ, e.inch);
   html += report_detail::svg_time_chart(
       id + "-power", "Power over time", "W",
       {{base_name(e.file), color, downsample_min_max(series.power_w, kMaxChartPoints)}}, markers,

@@ -55,10 +55,11 @@ std::string svg_coord(double v);
 
 // The toolpath seen from above (XY) or from the front (XZ): feed moves coloured by their power,
 // rapids as thin dashed lines, a colour scale under it. Every segment carries a tooltip with its
-// source line, power and removal rate (hover, or tap on a touch screen).
+// source line, power and removal rate (hover, or tap on a touch screen), the rate in the
+// program's units (in^3/min for an inch program).
 enum class PathView { XY, XZ };
 std::string svg_toolpath(const std::string& id, const std::string& title,
-                         const std::vector<PathPoint>& path, PathView view);
+                         const std::vector<PathPoint>& path, PathView view, bool inch = false);
 
 // The operations as a timeline: one bar per operation from its start, as long as its time, with
 // a tooltip of its name, tool, time and energy.

@@ -28,10 +28,16 @@ std::string power_text(double w) {
   return w >= 1000 ? format_number(w / 1000, 2) + " kW" : format_number(w, 0) + " W";
 }
 
+// A removal rate as the program's programmer reads it: mm^3/s, or in^3/min in an inch program.
+std::string removal_rate_text(double mm3_s, bool inch) {
+  return inch ? format_number(mm3_s * 60 / kMm3PerIn3, 2) + " in\u00b3/min"
+              : format_number(mm3_s, 1) + " mm\u00b3/s";
+}
+
 } // namespace
 
 std::string svg_toolpath(const std::string& id, const std::string& title,
-                         const std::vector<PathPoint>& path, PathView view) {
+                         const std::vector<PathPoint>& path, PathView view, bool inch) {
   std::string html = "<figure class=\"chart toolpath\" id=\"" + id + "\"><figcaption>" +
                      html_escaped(title) + "</figcaption>";
   if (path.size() < 2) return html + "<p class=\"note\">No moves to draw.</p></figure>";
@@ -95,7 +101,7 @@ std::string svg_toolpath(const std::string& id, const std::string& title,
                                      : std::string());
     const std::string tip =
         lines + (first.rapid ? ": rapid" : ": feed") + ", " + power +
-        (mrr > 0 ? ", MRR up to " + format_number(mrr, 1) + " mm\u00b3/s" : std::string());
+        (mrr > 0 ? ", MRR up to " + removal_rate_text(mrr, inch) : std::string());
     html += first.rapid ? "<path class=\"rapid\" data-line=\"" + std::to_string(first_line + 1) +
                               "\" d=\"" + d + "\"><title>" + html_escaped(tip) + "</title></path>"
                         : "<path class=\"feed\" data-line=\"" + std::to_string(first_line + 1) +

@@ -139,6 +139,8 @@ with tempfile.TemporaryDirectory() as tmp:
         html3 = f.read()
     check("Material removed" in html3 and "in&sup3;" in html3 and "mm&sup3;" not in html3,
           "an inch program's page gives volumes in in^3 only")
+    check("MRR up to" in html3 and "in\u00b3/min" in html3 and "mm\u00b3/s" not in html3,
+          "an inch program's toolpath tooltips give the removal rate in in^3/min")
     check("Cycle time" in html3 and "Electricity used" in html3 and "Cost of the run" in html3,
           "the cards are titled in plain words")
     check("/kWh (from command line (--price))" in html3 and "0.300" in html3,

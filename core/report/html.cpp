@@ -6,6 +6,7 @@
 
 #include "html_assets.hpp"
 #include "html_measured.hpp"
+#include "html_optimized.hpp"
 #include "ncjoule/duration.hpp"
 #include "ncjoule/report.hpp"
 #include "svg_chart.hpp"
@@ -181,6 +182,7 @@ std::string program_section(const ReportProgram& p, const MachineProfile& machin
   html += report_detail::svg_bar_chart(id + "-operations", "Energy per operation, by component",
                                        "kJ", op_rows, 1000, true);
   html += operations_table(ops, e);
+  if (p.source) html += report_detail::optimized_blocks_section(*p.source);
 
   std::vector<BarRow> component_rows;
   for (BarSegment& s : component_segments(e.energy.components_j))

@@ -177,6 +177,20 @@ check(r.returncode == 0 and open(stripped).read() == text, "strip leaves the NCJ
 # compare reads both.
 r = run("compare", "--machine", GENERIC, "--stock", STOCK, program, optimized)
 check(r.returncode == 0, "compare ORIGINAL OPTIMIZED runs")
+# The HTML report lists the changed blocks of an optimized program, and none of the original.
+page = os.path.join(work, "optimized.html")
+r = run("report", optimized, "--machine", GENERIC, "--stock", STOCK, "-o", page)
+html = open(page, encoding="utf-8").read() if r.returncode == 0 else ""
+marked = [l for l in text.splitlines() if "NCJOPT" in l and not l.lstrip().startswith("(")]
+rows = re.findall(r'<tr data-line="(\d+)"><td>\d+</td><td>([A-Z]+)</td>', html)
+check("Blocks changed by ncjoule optimize" in html and len(rows) == len(marked) >= changed,
+      f"the report lists every changed block ({len(rows)} rows, {len(marked)} marked lines)")
+lines = text.splitlines()
+check(all("NCJOPT" in lines[int(n) - 1] for n, _ in rows), "each listed line carries the mark")
+original_page = os.path.join(work, "original.html")
+r = run("report", program, "--machine", GENERIC, "--stock", STOCK, "-o", original_page)
+check(r.returncode == 0 and "Blocks changed by ncjoule optimize" not in
+      open(original_page, encoding="utf-8").read(), "the original's report lists no changed block")
 
 # Refusals: nothing written, the original as it was.
 refused = os.path.join(work, "refused.ngc")

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -55,8 +56,8 @@ void remove_move(RemovalEngine& engine, const Tool& tool, const CanonCommand& c,
   }
   const double length = move_length(c);
   const double sweep = std::abs(arc_geometry(c).sweep);
-  const int n =
-      std::clamp(int(std::ceil(std::max(length / step, sweep / (M_PI / 36)))), 1, 100'000);
+  const int n = std::clamp(int(std::ceil(std::max(length / step, sweep / (std::numbers::pi / 36)))),
+                           1, 100'000);
   Pose from = c.start;
   for (int k = 1; k <= n; ++k) {
     const Pose to = k == n ? c.end : point_on_move(c, double(k) / n);

@@ -29,7 +29,8 @@ fi
 # is installed (share/ncjoule/machines next to its bin folder), not in this source tree. Linked
 # --as-needed, as Debian's packages are: no dependency on a library nothing is used from.
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX=/usr \
-  -DNCJOULE_BUILD_TESTS=OFF -DNCJOULE_SOURCE_PROFILES=OFF "${launcher[@]}" \
+  -DNCJOULE_BUILD_TESTS=OFF -DNCJOULE_SOURCE_PROFILES=OFF -U NCJOULE_STAGES -U NCJOULE_COMMANDS \
+  "${launcher[@]}" \
   -DCMAKE_EXE_LINKER_FLAGS=-Wl,--as-needed -DCMAKE_SHARED_LINKER_FLAGS=-Wl,--as-needed >/dev/null
 cmake --build "$build" --target ncjoule ncjoule_shared
 

@@ -18,6 +18,12 @@ void start_console();
 // Whether standard error is a terminal that takes the progress bar's escape sequences.
 bool stderr_is_terminal();
 
+// Whether writing to `path` writes where standard output goes (/dev/stdout, /dev/fd/1, or the
+// very file or terminal the shell sent it to; CON on Windows): a command whose output file is
+// its standard output then prints its own messages to standard error, so they do not land in
+// the text.
+bool is_standard_output(const std::string& path);
+
 // A path from UTF-8 text, and back. On POSIX the bytes are the path; on Windows the path is
 // UTF-16 and std::filesystem would read and write narrow strings in a legacy code page.
 std::filesystem::path path_from_utf8(const std::string& utf8);

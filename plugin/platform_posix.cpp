@@ -2,6 +2,7 @@
 #include "platform.hpp"
 
 #include <cstdlib>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace ncjoule::cli::platform {
@@ -12,6 +13,14 @@ bool stderr_is_terminal() {
   if (!isatty(STDERR_FILENO)) return false;
   const char* term = std::getenv("TERM");
   return !(term && std::string(term) == "dumb");
+}
+
+bool is_standard_output(const std::string& path) {
+  if (path == "-") return true;
+  struct stat out {
+  }, target{};
+  return fstat(STDOUT_FILENO, &out) == 0 && stat(path.c_str(), &target) == 0 &&
+         out.st_dev == target.st_dev && out.st_ino == target.st_ino;
 }
 
 std::filesystem::path path_from_utf8(const std::string& utf8) {

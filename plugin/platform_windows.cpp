@@ -10,6 +10,7 @@
 #endif
 #include <windows.h>
 
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <fcntl.h>
@@ -89,6 +90,13 @@ void start_console() {
       std::atexit(restore_console_code_page);
     }
   }
+}
+
+bool is_standard_output(const std::string& path) {
+  std::string name;
+  for (char c : path)
+    name += char(std::toupper(static_cast<unsigned char>(c)));
+  return name == "-" || name == "CON" || name == "CONOUT$";
 }
 
 bool stderr_is_terminal() {

@@ -27,6 +27,7 @@
 #include "ncjoule/optimize.hpp"
 #include "ncjoule/report.hpp"
 #include "output_file.hpp"
+#include "platform.hpp"
 #include "progress.hpp"
 
 namespace ncjoule::cli {
@@ -89,7 +90,7 @@ std::string money(double value, const std::string& currency) {
 }
 
 void print_savings(const Estimate& before, const Estimate& after, const OptimizePlan& plan,
-                   const OptimizedText& written, const std::string& output) {
+                   const OptimizedText& written, const std::string& output, std::FILE* out) {
   std::size_t air = 0, rapid = 0, load = 0;
   for (const BlockEdit& e : plan.edits) {
     if (e.rule == EditRule::AirFeed) ++air;
@@ -97,40 +98,46 @@ void print_savings(const Estimate& before, const Estimate& after, const Optimize
     if (e.rule == EditRule::LoadFeed) ++load;
   }
   const ProgramTotals a = program_totals(before), b = program_totals(after);
-  std::printf("%s: %zu blocks changed (%zu air feeds, %zu rapids, %zu load feeds), %zu restore "
-              "blocks added; wrote %s\n",
-              printable(before.file).c_str(), written.changed_blocks, air, rapid, load,
-              written.restore_blocks, printable(output).c_str());
-  std::printf("  %zu feed moves, %zu clear of the stock by the tool radius plus %.2f mm, %zu of "
-              "them in blocks that may change\n",
-              plan.feed_moves, plan.clear_moves, plan.margin_mm, plan.simple_clear_moves);
+  std::fprintf(out,
+               "%s: %zu blocks changed (%zu air feeds, %zu rapids, %zu load feeds), %zu restore "
+               "blocks added; wrote %s\n",
+               printable(before.file).c_str(), written.changed_blocks, air, rapid, load,
+               written.restore_blocks, printable(output).c_str());
+  std::fprintf(out,
+               "  %zu feed moves, %zu clear of the stock by the tool radius plus %.2f mm, %zu of "
+               "them in blocks that may change\n",
+               plan.feed_moves, plan.clear_moves, plan.margin_mm, plan.simple_clear_moves);
   if (load || plan.finishing_passes)
-    std::printf("  load feeds: %zu lowered and %zu raised to keep the predicted cutting power "
-                "within %.0f%% of the spindle's rating (at most %.2f times the programmed feed); "
-                "%zu finishing passes (under %.2f mm deep or wide) left as they were\n",
-                plan.load_lowered, plan.load_raised, 100 * plan.load_share, plan.max_feed_factor,
-                plan.finishing_passes, plan.finish_depth_mm);
+    std::fprintf(out,
+                 "  load feeds: %zu lowered and %zu raised to keep the predicted cutting power "
+                 "within %.0f%% of the spindle's rating (at most %.2f times the programmed feed); "
+                 "%zu finishing passes (under %.2f mm deep or wide) left as they were\n",
+                 plan.load_lowered, plan.load_raised, 100 * plan.load_share, plan.max_feed_factor,
+                 plan.finishing_passes, plan.finish_depth_mm);
   if (after.time_s > before.time_s)
-    std::printf("  the time grew by %.1f s: %zu cutting feeds were lowered to keep their predicted "
-                "cutting power within %.0f%% of the spindle's rating\n",
-                after.time_s - before.time_s, plan.load_lowered, 100 * plan.load_share);
+    std::fprintf(
+        out,
+        "  the time grew by %.1f s: %zu cutting feeds were lowered to keep their predicted "
+        "cutting power within %.0f%% of the spindle's rating\n",
+        after.time_s - before.time_s, plan.load_lowered, 100 * plan.load_share);
   if (plan.too_long)
-    std::printf("  %zu left as they were: the marked block would pass the line length\n",
-                plan.too_long);
+    std::fprintf(out, "  %zu left as they were: the marked block would pass the line length\n",
+                 plan.too_long);
   const std::string currency = printable(a.currency);
-  std::printf("\n  %-10s %14s %14s %14s\n", "", "original", "optimized", "saved");
-  auto row = [](const char* name, double x, double y, const char* unit, int decimals) {
+  std::fprintf(out, "\n  %-10s %14s %14s %14s\n", "", "original", "optimized", "saved");
+  auto row = [out](const char* name, double x, double y, const char* unit, int decimals) {
     const double pct = x != 0 ? 100 * (x - y) / x : 0;
-    std::printf("  %-10s %11.*f %-2s %11.*f %-2s %11.*f %-2s (%.1f%%)\n", name, decimals, x, unit,
-                decimals, y, unit, decimals, x - y, unit, pct);
+    std::fprintf(out, "  %-10s %11.*f %-2s %11.*f %-2s %11.*f %-2s (%.1f%%)\n", name, decimals, x,
+                 unit, decimals, y, unit, decimals, x - y, unit, pct);
   };
   row("time", a.time_s, b.time_s, "s", 1);
   row("air cut", a.air_cut_s, b.air_cut_s, "s", 1);
   row("energy", a.energy_j / 1000, b.energy_j / 1000, "kJ", 2);
-  std::printf("  %-10s %14s %14s %14s\n", "cost", money(a.cost, currency).c_str(),
-              money(b.cost, currency).c_str(), money(a.cost - b.cost, currency).c_str());
-  std::printf("  %-10s %11.0f mm3 %9.0f mm3 %+10.3f%%\n", "removed", a.removed_mm3, b.removed_mm3,
-              a.removed_mm3 > 0 ? 100 * (b.removed_mm3 - a.removed_mm3) / a.removed_mm3 : 0.0);
+  std::fprintf(out, "  %-10s %14s %14s %14s\n", "cost", money(a.cost, currency).c_str(),
+               money(b.cost, currency).c_str(), money(a.cost - b.cost, currency).c_str());
+  std::fprintf(out, "  %-10s %11.0f mm3 %9.0f mm3 %+10.3f%%\n", "removed", a.removed_mm3,
+               b.removed_mm3,
+               a.removed_mm3 > 0 ? 100 * (b.removed_mm3 - a.removed_mm3) / a.removed_mm3 : 0.0);
   // By operation, as compare explains a difference: what the original takes more than the
   // optimized program, in time, energy and cost.
   std::vector<RankedProgram> ranked = rank_programs({b, a}, RankBy::Time);
@@ -139,11 +146,11 @@ void print_savings(const Estimate& before, const Estimate& after, const Optimize
   if (best->totals.file != b.file) std::swap(best, other);
   for (const RankBy by : {RankBy::Time, RankBy::Energy, RankBy::Cost}) {
     const std::string ops = explain_by_operation(*other, *best, by);
-    std::printf("\n  saved by operation (%s): %s", std::string(rank_by_name(by)).c_str(),
-                ops.empty() ? "none" : printable(ops).c_str());
+    std::fprintf(out, "\n  saved by operation (%s): %s", std::string(rank_by_name(by)).c_str(),
+                 ops.empty() ? "none" : printable(ops).c_str());
   }
-  std::printf("\n\nreview with: ncjoule compare %s %s\n", printable(before.file).c_str(),
-              printable(output).c_str());
+  std::fprintf(out, "\n\nreview with: ncjoule compare %s %s\n", printable(before.file).c_str(),
+               printable(output).c_str());
 }
 
 int run_optimize(const OptimizeCliOptions& o) {
@@ -296,6 +303,8 @@ int run_optimize(const OptimizeCliOptions& o) {
     std::cerr << '\n';
     return kOutputError;
   }
+  // What it says goes to standard error when the program itself goes to standard output.
+  std::FILE* const out = platform::is_standard_output(o.output) ? stderr : stdout;
   if (const int w = write_program(o.file, o.output, nullptr, written.text); w != kOk) return w;
   if (o.json) {
     // What changed and what the checks saw, then the two programs as compare --json gives them.
@@ -306,33 +315,35 @@ int run_optimize(const OptimizeCliOptions& o) {
       air += e.rule == EditRule::AirFeed;
       load += e.rule == EditRule::LoadFeed;
     }
-    std::printf("{\"changed_blocks\": %zu, \"air_feeds\": %zu, \"rapids\": %zu, "
-                "\"restore_blocks\": %zu, \"feed_moves\": %zu, \"clear_moves\": %zu, "
-                "\"margin_mm\": %.6g, \"removed_mm3\": [%.6f, %.6f], \"time_s\": [%.6f, %.6f], "
-                "\"collisions\": [%zu, %zu],\n",
-                written.changed_blocks, air, written.changed_blocks - air - load,
-                written.restore_blocks, plan.feed_moves, plan.clear_moves, plan.margin_mm,
-                before.removal->removed_mm3, after->removal->removed_mm3, before.time_s,
-                after->time_s, collisions(before), collisions(*after));
+    std::fprintf(out,
+                 "{\"changed_blocks\": %zu, \"air_feeds\": %zu, \"rapids\": %zu, "
+                 "\"restore_blocks\": %zu, \"feed_moves\": %zu, \"clear_moves\": %zu, "
+                 "\"margin_mm\": %.6g, \"removed_mm3\": [%.6f, %.6f], \"time_s\": [%.6f, %.6f], "
+                 "\"collisions\": [%zu, %zu],\n",
+                 written.changed_blocks, air, written.changed_blocks - air - load,
+                 written.restore_blocks, plan.feed_moves, plan.clear_moves, plan.margin_mm,
+                 before.removal->removed_mm3, after->removal->removed_mm3, before.time_s,
+                 after->time_s, collisions(before), collisions(*after));
     if (o.load_feeds)
-      std::printf(" \"load_feeds\": {\"lowered\": %zu, \"raised\": %zu, \"finishing_passes\": "
-                  "%zu, \"share\": %.6g, \"max_feed_factor\": %.6g, \"finish_depth_mm\": %.6g, "
-                  "\"passes\": %d, \"over_share\": %zu, \"min_feed_factor\": %.6g, "
-                  "\"floored\": %zu},\n",
-                  plan.load_lowered, plan.load_raised, plan.finishing_passes, plan.load_share,
-                  plan.max_feed_factor, plan.finish_depth_mm, loaded.passes, loaded.over_share,
-                  plan.min_feed_factor, plan.load_floored);
-    std::printf(" \"comparison\": ");
-    std::fflush(stdout);
-    std::cout << comparison_json(ranked, machine, 1, RankBy::Time) << "}\n";
+      std::fprintf(out,
+                   " \"load_feeds\": {\"lowered\": %zu, \"raised\": %zu, \"finishing_passes\": "
+                   "%zu, \"share\": %.6g, \"max_feed_factor\": %.6g, \"finish_depth_mm\": %.6g, "
+                   "\"passes\": %d, \"over_share\": %zu, \"min_feed_factor\": %.6g, "
+                   "\"floored\": %zu},\n",
+                   plan.load_lowered, plan.load_raised, plan.finishing_passes, plan.load_share,
+                   plan.max_feed_factor, plan.finish_depth_mm, loaded.passes, loaded.over_share,
+                   plan.min_feed_factor, plan.load_floored);
+    std::fprintf(out, " \"comparison\": ");
+    std::fputs((comparison_json(ranked, machine, 1, RankBy::Time) + "}\n").c_str(), out);
   } else {
-    print_savings(before, *after, plan, written, o.output);
+    print_savings(before, *after, plan, written, o.output, out);
     if (loaded.over_share)
-      std::printf("  %zu load-scaled blocks are still predicted above the share after %d passes "
-                  "(%zu held at %.2f times their programmed feed)\n",
-                  loaded.over_share, loaded.passes, plan.load_floored, plan.min_feed_factor);
+      std::fprintf(out,
+                   "  %zu load-scaled blocks are still predicted above the share after %d passes "
+                   "(%zu held at %.2f times their programmed feed)\n",
+                   loaded.over_share, loaded.passes, plan.load_floored, plan.min_feed_factor);
   }
-  std::cout.flush();
+  std::fflush(out);
   return kOk;
 }
 

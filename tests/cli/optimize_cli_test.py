@@ -177,6 +177,19 @@ check(r.returncode == 0 and open(stripped).read() == text, "strip leaves the NCJ
 # compare reads both.
 r = run("compare", "--machine", GENERIC, "--stock", STOCK, program, optimized)
 check(r.returncode == 0, "compare ORIGINAL OPTIMIZED runs")
+# -o /dev/stdout appended to a log keeps the log, and the program goes there alone: what
+# optimize says goes to standard error.
+log = os.path.join(work, "log.txt")
+with open(log, "w") as f:
+    f.write("KEEP ME\n")
+with open(log, "a") as f:
+    r = subprocess.run([NCJOULE, "optimize", program, "--machine", GENERIC, "--stock", STOCK,
+                        "-o", "/dev/stdout"], stdout=f, stderr=subprocess.PIPE, text=True,
+                       timeout=300, env=dict(os.environ, NCJOULE_PROGRESS="0"))
+logged = open(log).read()
+check(r.returncode == 0 and logged == "KEEP ME\n" + text,
+      "-o /dev/stdout >> log: the log kept, then the optimized program alone")
+check("saved" in r.stderr, "with the program on standard output, the savings go to stderr")
 # The HTML report lists the changed blocks of an optimized program, and none of the original.
 page = os.path.join(work, "optimized.html")
 r = run("report", optimized, "--machine", GENERIC, "--stock", STOCK, "-o", page)

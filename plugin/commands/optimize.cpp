@@ -219,21 +219,9 @@ int run_optimize(const OptimizeCliOptions& o) {
   rules.min_feed_factor = o.min_feed_factor;
   rules.finish_depth_mm = o.finish_depth_mm;
   // Rule c starts from each line's predicted load at its programmed feed.
-  const std::map<int, double> rpm = spindle_rpm_by_line(commands);
-  std::map<int, LoadAt> loads;
-  for (const auto& [line, load] : mean_spindle_loads(before, rpm))
-    loads[line] = LoadAt{load, 0};
-  const std::unique_ptr<StockShape> stock =
-      make_box_stock(before.removal->stock_box, before.removal->stock_description);
-  OptimizeInput in;
-  in.source = &*input;
-  in.dialect = before.dialect;
-  in.commands = &commands;
-  in.tools = &before.tools;
-  in.stock = stock.get();
-  in.grid = before.removal->grid;
-  in.kinematics = machine.kinematics;
-  in.loads = &loads;
+  const std::unique_ptr<OptimizeStart> start =
+      optimize_start(*input, before, commands, machine.kinematics);
+  const std::map<int, double>& rpm = start->rpm_by_line;
   EstimateOptions second = *options;
   second.progress = progress.callback();
   if (!second.dialect) second.dialect = before.dialect;
@@ -249,7 +237,7 @@ int run_optimize(const OptimizeCliOptions& o) {
     estimate_written(text);
     return mean_spindle_loads(*after, rpm, &text.original_line);
   };
-  const LoadedPlan loaded = plan_with_load_feeds(in, rules, loads_of);
+  const LoadedPlan loaded = plan_with_load_feeds(start->input, rules, loads_of);
   const OptimizePlan& plan = loaded.plan;
   const OptimizedText& written = loaded.text;
   commands.clear();

@@ -10,16 +10,12 @@
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/optimize.hpp"
 #include "ncjoule/profile.hpp"
+#include "optimize_test_support.hpp"
 
 using namespace ncjoule;
+using namespace ncjoule::test;
 
 namespace {
-
-const MachineProfile& machine() {
-  static const MachineProfile profile =
-      load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
-  return profile;
-}
 
 // A 12 mm end mill over the box 0..40 x 0..20 x -10..0 (aluminium, a 5.5 kW spindle): a full
 // slot 8 mm deep at F5000 (about 8000 mm3/s, above 70% of the rating), a pass 2 mm wide and 3 mm
@@ -68,21 +64,10 @@ Run optimize_loads(const OptimizeOptions& options) {
   Run run;
   run.before = estimate_program(source, machine(), eo);
   REQUIRE(run.before.removal);
-  run.rpm = spindle_rpm_by_line(commands);
-  std::map<int, LoadAt> loads;
-  for (const auto& [line, load] : mean_spindle_loads(run.before, run.rpm))
-    loads[line] = LoadAt{load, 0};
-  const std::unique_ptr<StockShape> stock = make_box_stock(run.before.removal->stock_box, "box");
-  OptimizeInput in;
-  in.source = &source;
-  in.dialect = run.before.dialect;
-  in.commands = &commands;
-  in.tools = &run.before.tools;
-  in.stock = stock.get();
-  in.grid = run.before.removal->grid;
-  in.kinematics = machine().kinematics;
-  in.loads = &loads;
-  run.loaded = plan_with_load_feeds(in, options, [&](const OptimizedText& text) {
+  const std::unique_ptr<OptimizeStart> start =
+      optimize_start(source, run.before, commands, machine().kinematics);
+  run.rpm = start->rpm_by_line;
+  run.loaded = plan_with_load_feeds(start->input, options, [&](const OptimizedText& text) {
     const Estimate e =
         estimate_program(make_source("load-opt.nc", text.text), machine(), with_stock());
     return mean_spindle_loads(e, run.rpm, &text.original_line);
@@ -92,24 +77,6 @@ Run optimize_loads(const OptimizeOptions& options) {
       estimate_program(make_source("load-opt.nc", run.loaded.text.text), machine(), with_stock());
   REQUIRE(run.after.removal);
   return run;
-}
-
-const BlockEdit* edit_on(const OptimizePlan& plan, int line) {
-  for (const BlockEdit& e : plan.edits)
-    if (e.line == line) return &e;
-  return nullptr;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t end = text.find('\n', at);
-    out.push_back(text.substr(at, end - at));
-    if (end == std::string::npos) break;
-    at = end + 1;
-  }
-  return out;
 }
 
 OptimizeOptions load_only() {
@@ -214,22 +181,11 @@ TEST_CASE("load feeds put the original F back for a block that relies on it") {
   eo.keep_commands = &commands;
   const Estimate before = estimate_program(source, machine(), eo);
   REQUIRE(before.removal);
-  std::map<int, LoadAt> loads;
-  for (const auto& [line, load] : mean_spindle_loads(before, spindle_rpm_by_line(commands)))
-    loads[line] = LoadAt{load, 0};
-  const std::unique_ptr<StockShape> stock = make_box_stock(before.removal->stock_box, "box");
-  OptimizeInput in;
-  in.source = &source;
-  in.dialect = before.dialect;
-  in.commands = &commands;
-  in.tools = &before.tools;
-  in.stock = stock.get();
-  in.grid = before.removal->grid;
-  in.kinematics = machine().kinematics;
-  in.loads = &loads;
+  const std::unique_ptr<OptimizeStart> start =
+      optimize_start(source, before, commands, machine().kinematics);
   OptimizeOptions options = load_only();
   options.max_feed_factor = 1;
-  const OptimizePlan plan = plan_optimization(in, options);
+  const OptimizePlan plan = plan_optimization(start->input, options);
   const BlockEdit* slot = edit_on(plan, 5);
   REQUIRE(slot);
   CHECK(slot->feed_mm_min < 5000);

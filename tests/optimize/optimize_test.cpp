@@ -10,17 +10,13 @@
 #include "ncjoule/estimate.hpp"
 #include "ncjoule/optimize.hpp"
 #include "ncjoule/profile.hpp"
+#include "optimize_test_support.hpp"
 #include "simple_block.hpp"
 
 using namespace ncjoule;
+using namespace ncjoule::test;
 
 namespace {
-
-const MachineProfile& machine() {
-  static const MachineProfile profile =
-      load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
-  return profile;
-}
 
 // A 6 mm end mill over the box 0..40 x 0..20 x -10..0: plunges and links outside it in air, one
 // cut across it at Z-2 and one back at Z-3.
@@ -57,36 +53,11 @@ Run optimize_text(const std::string& text, const OptimizeOptions& options = {}) 
   Run run;
   run.before = estimate_program(source, machine(), eo);
   REQUIRE(run.before.removal);
-  const std::unique_ptr<StockShape> stock = make_box_stock(run.before.removal->stock_box, "box");
-  OptimizeInput in;
-  in.source = &source;
-  in.dialect = run.before.dialect;
-  in.commands = &commands;
-  in.tools = &run.before.tools;
-  in.stock = stock.get();
-  in.grid = run.before.removal->grid;
-  in.kinematics = machine().kinematics;
-  run.plan = plan_optimization(in, options);
+  const std::unique_ptr<OptimizeStart> start =
+      optimize_start(source, run.before, commands, machine().kinematics);
+  run.plan = plan_optimization(start->input, options);
   run.out = write_optimized(source, run.before.dialect, run.plan);
   return run;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t at = 0;
-  while (at < text.size()) {
-    const std::size_t end = text.find('\n', at);
-    out.push_back(text.substr(at, end - at));
-    if (end == std::string::npos) break;
-    at = end + 1;
-  }
-  return out;
-}
-
-const BlockEdit* edit_on(const OptimizePlan& plan, int line) {
-  for (const BlockEdit& e : plan.edits)
-    if (e.line == line) return &e;
-  return nullptr;
 }
 
 // The optimized text without its header and its restore blocks: the original's lines, changed

@@ -28,6 +28,7 @@
 #include <cstddef>
 #include <functional>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -169,6 +170,21 @@ std::map<int, double> mean_spindle_loads(const Estimate& estimate,
                                          const std::vector<int>* original_line = nullptr);
 // The spindle speed each line's moves ran at (the last move's, rpm; 0: spindle off).
 std::map<int, double> spindle_rpm_by_line(const std::vector<CanonCommand>& commands);
+
+// What a plan starts from, made from a program's estimate on its known stock (`before`, with its
+// removal) and the commands that estimate kept (EstimateOptions::keep_commands): the model of
+// the stock box, each line's spindle speed and its load at the programmed feed (rule c), and
+// the input, pointing to them and to `source`, `commands` and `before`'s tools, which must
+// outlive it. Held by pointer, since the input points into it.
+struct OptimizeStart {
+  std::unique_ptr<StockShape> stock;
+  std::map<int, double> rpm_by_line;
+  std::map<int, LoadAt> loads;
+  OptimizeInput input;
+};
+std::unique_ptr<OptimizeStart> optimize_start(const SourceFile& source, const Estimate& before,
+                                              const std::vector<CanonCommand>& commands,
+                                              const Kinematics& kinematics);
 
 // Rule c with the prediction in the loop: the plan from `loads` (each line's predicted load at
 // its programmed feed), written, and the written text's loads asked of `loads_of` (by the

@@ -251,8 +251,19 @@ private:
       for (std::size_t t = first; t < last; ++t) {
         const std::size_t tile = touched[t];
         const int ti = int(tile % std::size_t(across)), tj = int(tile / std::size_t(across));
-        for (TileStep& ts : tile_steps_[tile]) {
+        std::vector<TileStep>& list = tile_steps_[tile];
+        for (std::size_t e = 0; e < list.size();) {
+          TileStep& ts = list[e];
           const SweptStep& step = swept[ts.step];
+          const std::size_t run = plunge_run(list, e, swept);
+          if (run > 1) {
+            const FootprintRange& f = ranges[ts.step];
+            cut_plunge(list.data() + e, run, swept, f, spans.of(ts.step, step, f, tj, grid_), ti,
+                       tj, tile);
+            e += run;
+            continue;
+          }
+          ++e;
           const double zlow = step.lowest_tip_z();
           if (tile_top_[tile] <= zlow) continue; // no material above the tool in this tile
           visit_tile(step, ranges[ts.step], spans.of(ts.step, step, ranges[ts.step], tj, grid_), ti,
@@ -278,6 +289,67 @@ private:
       }
       tile_steps_[tile].clear();
     }
+  }
+
+  // How many of a tile's steps from `e` on are vertical steps of one tool on one axis (a
+  // plunge's or a peck's steps): 1 where step e is not followed by such.
+  static std::size_t plunge_run(const std::vector<TileStep>& list, std::size_t e,
+                                const std::vector<SweptStep>& swept) {
+    const SweptStep& first = swept[list[e].step];
+    std::size_t n = 1;
+    if (!first.vertical()) return n;
+    while (e + n < list.size() && first.same_axis(swept[list[e + n].step]))
+      ++n;
+    return n;
+  }
+
+  // Steps run[0..n) of one tile, vertical steps on one axis (plunge_run), applied column by
+  // column rather than step by step: a column's envelope differs from step to step only by the
+  // step's lowest tip, so its offset is worked out once for all of them. A step changes only the
+  // columns it cuts, so each column ends as the steps in order leave it, and each step sums its
+  // columns in the order visit_tile does: the same numbers bit for bit, for a fraction of the
+  // work (a drill's peck at a fine grid is hundreds of steps over the same disc of columns).
+  void cut_plunge(TileStep* run, std::size_t n, const std::vector<SweptStep>& swept,
+                  const FootprintRange& f, const int* rows, int ti, int tj, std::size_t tile) {
+    const SweptStep& axis = swept[run[0].step];
+    std::vector<double> tips(n); // each step's lowest tip, at hand for the column loop
+    for (std::size_t s = 0; s < n; ++s)
+      tips[s] = swept[run[s].step].lowest_tip_z();
+    const double lowest = *std::min_element(tips.begin(), tips.end());
+    if (tile_top_[tile] <= lowest) return; // no material above the tool in this tile
+    const int ia = std::max(f.i0, ti * kTileColumns);
+    const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
+    const int ja = std::max(f.j0, tj * kTileColumns);
+    const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
+    bool cut = false;
+    for (int j = ja; j <= jb; ++j, rows += 2) {
+      const int a = std::max(ia, rows[0]);
+      const int b = std::min(ib, rows[1]);
+      if (a > b) continue;
+      for (std::size_t s = 0; s < n; ++s)
+        run[s].result.columns_visited += std::uint64_t(b - a + 1);
+      const double y = grid_.column_y(j);
+      const std::size_t row = std::size_t(j) * std::size_t(grid_.nx);
+      for (int i = a; i <= b; ++i) {
+        const std::size_t c = row + std::size_t(i);
+        double top = top_[c];
+        if (top <= lowest) continue;
+        const double offset = axis.plunge_offset(grid_.column_x(i), y);
+        for (std::size_t s = 0; s < n; ++s) {
+          // cut_column's steps, with the envelope lowest tip + offset.
+          if (top <= tips[s]) continue;
+          TileResult& acc = run[s].result;
+          ++acc.cells_tested;
+          const double env = tips[s] + offset;
+          if (env >= top) continue;
+          acc.cut_top_mm = std::max(acc.cut_top_mm, top);
+          acc.volume_mm3 += clip_column(c, env);
+          top = top_[c];
+          cut = true;
+        }
+      }
+    }
+    if (cut) refresh_tile_top(tile);
   }
 
   // Cuts column c down to the step's envelope.

@@ -132,6 +132,15 @@ double SweptStep::envelope_at(double x, double y) const {
   return e;
 }
 
+double SweptStep::plunge_offset(double x, double y) const {
+  // lowest_bottom's plunge case less the lowest tip: zlow + min(a, b) rounds as
+  // min(zlow + a, zlow + b) does, since rounding a sum is monotonic in each term.
+  const double r = planar_length(x - ax_, y - ay_);
+  double offset = r > radius_ ? kInf : profile_height(r);
+  if (shank_radius_ > 0 && r <= shank_radius_) offset = std::min(offset, shank_height_);
+  return offset;
+}
+
 bool SweptStep::contains(double x, double y, double z) const {
   const double qx = x - ax_, qy = y - ay_;
   // Horizontal distance from the tool axis to the point when the tip is at parameter t (mm of

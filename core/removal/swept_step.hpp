@@ -30,6 +30,19 @@ public:
   double footprint_xmax() const { return xmax_; }
   double lowest_tip_z() const { return zlow_; }
 
+  // A vertical step (plunge or retract: the tool axis does not move sideways).
+  bool vertical() const { return len_ == 0; }
+  // Whether `other` is a vertical step of the same tool on the same axis as this one: the two
+  // cover the same columns, each down to its own lowest tip plus the same offset per column.
+  bool same_axis(const SweptStep& other) const {
+    return vertical() && other.vertical() && &tool_ == &other.tool_ && ax_ == other.ax_ &&
+           ay_ == other.ay_;
+  }
+  // For a vertical step: the lowest tool bottom in the column through (x, y) above the lowest
+  // tip (+infinity where the tool does not cover it). envelope_at(x, y) is
+  // lowest_tip_z() + plunge_offset(x, y), the same number bit for bit.
+  double plunge_offset(double x, double y) const;
+
 private:
   // Lowest tool bottom over the step for a profile of radius `radius` (the cutter, or the
   // shank seen as a flat tool), relative to the tip.

@@ -119,3 +119,59 @@ TEST_CASE("a batch of a tool far wider than the grid runs in chunks, with the sa
     CHECK(identical == v.size());
   }
 }
+
+TEST_CASE("pecks and plunges (vertical steps on one axis) give the volumes of step by step") {
+  // The batch applies a run of vertical steps on one axis column by column (the tool's offset in
+  // each column worked out once): its volumes must still be those of the steps one by one. Pecks
+  // of 0.05 mm steps down and back up at a few holes, a drill, a flat mill with a
+  // shank wider than its cutter (the shank reaches the stock on the deep holes) and a ball mill,
+  // with a sideways move between holes so runs end and start again within tiles.
+  Tool shanked = flat_end_mill(2, 3);
+  shanked.cutting_length_mm = 1.5;
+  shanked.shank_diameter_mm = 6;
+  const std::vector<Tool> tools{drill(1, 5, 118), shanked, ball_end_mill(3, 4)};
+  std::vector<RemovalStep> steps;
+  int hole = 0;
+  for (double x : {10.0, 10.8, 25.0, 40.3}) {
+    for (double y : {12.0, 30.7}) {
+      const Tool& tool = tools[std::size_t(hole++) % tools.size()];
+      Point3 at{x, y, 1};
+      for (double bottom : {-1.0, -2.2, -3.5}) { // three pecks, each back to Z1
+        for (double z = at.z() - 0.05; z > bottom - 1e-9; z -= 0.05) {
+          steps.push_back({&tool, at, {x, y, z}});
+          at = {x, y, z};
+        }
+        steps.push_back({&tool, at, {x, y, 1}});
+        at = {x, y, 1};
+      }
+      steps.push_back({&tool, at, {x + 0.7, y + 0.4, -0.5}}); // a sideways cut after the hole
+    }
+  }
+  const Box3 box{0, 0, -3, 60, 60, 0};
+  const auto stock = make_box_stock(box, "test box");
+  const GridFrame grid = make_grid(box, 0.1); // 600 x 600 columns: holes cross tile borders
+  const std::vector<double> reference = one_by_one(*stock, grid, steps);
+  double total = 0;
+  std::size_t cutting = 0;
+  for (double v : reference) {
+    total += v;
+    cutting += v > 0;
+  }
+  CHECK(total > 150);   // eight holes of 3-5 mm through most of 3 mm, and the shank's rings
+  CHECK(cutting > 300); // most steps down cut
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    for (std::size_t batch : {std::size_t(7), std::size_t(100000)}) {
+      CAPTURE(threads);
+      CAPTURE(batch);
+      double left = 0;
+      const std::vector<double> v = batched(*stock, grid, steps, batch, &left);
+      REQUIRE(v.size() == reference.size());
+      std::size_t identical = 0;
+      for (std::size_t k = 0; k < v.size(); ++k)
+        identical += v[k] == reference[k]; // exact, not approximate
+      CHECK(identical == v.size());
+      CHECK(left == doctest::Approx(60 * 60 * 3 - total).epsilon(1e-9));
+    }
+  }
+}

@@ -4,8 +4,12 @@
 // the program's leading lines.
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <optional>
 #include <vector>
+
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 #include "annotation_form.hpp"
 #include "header.hpp"
@@ -215,6 +219,113 @@ struct SealSpot {
   std::size_t room = 0;
 };
 
+// What writing lines needs to know of the whole program.
+struct ChunkContext {
+  const CleanLines& lines;
+  const std::vector<const LineSummary*>& summary;
+  const std::map<std::size_t, const OperationSummary*>& operations;
+  const AnnotateOptions& options;
+  const Estimate& estimate;
+  const WriteStyle& style;
+  bool header; // output_line is wanted (the header names blocks by their output line)
+  std::size_t header_line;
+  double mrr_scale;
+};
+
+// A comment of the block form, in the order the file holds them: one of ours (its normal text
+// in LineChunk::normals, and where the seal field could go) or one of the program's to keep.
+struct CommentEvent {
+  bool ours = false;
+  std::size_t normal_size = 0;
+  std::string keep_hash;
+  std::size_t spot_offset = 0; // in the chunk's text
+  std::size_t spot_room = 0;   // 0: no spot for the SEAL field
+};
+
+// Lines [first, last) written back with their comments, joined in order by annotate().
+struct LineChunk {
+  std::size_t first = 0, last = 0;
+  std::string text;
+  std::string normals; // our comments' normal texts, back to back
+  std::vector<CommentEvent> events;
+  std::vector<int> output_line;             // each line's output line, from 0 in the chunk
+  int lines_written = 0;                    // lines of output, comment lines included
+  std::optional<std::size_t> header_offset; // in text, where the header goes when it is here
+  bool load_used = false, operation_used = false;
+};
+
+std::shared_ptr<LineChunk> write_lines(const ChunkContext& c, std::size_t first, std::size_t last) {
+  auto chunk = std::make_shared<LineChunk>();
+  chunk->first = first, chunk->last = last;
+  std::string& out = chunk->text;
+  const WriteStyle& style = c.style;
+  if (c.header) chunk->output_line.assign(last - first, 0);
+  int next = 0;
+  auto ours = [&](const std::string& comment, std::size_t line_length) {
+    const std::string normal = normal_of(comment, style.comment);
+    CommentEvent e;
+    e.ours = true;
+    e.normal_size = normal.size();
+    chunk->normals += normal;
+    if (!c.header && line_length < style.max_line_length) {
+      e.spot_offset = out.size() - style.comment.close.size();
+      e.spot_room = style.max_line_length - line_length;
+    }
+    chunk->events.push_back(std::move(e));
+  };
+  for (std::size_t i = first; i < last; ++i) {
+    if (i == c.header_line) chunk->header_offset = out.size();
+    if (c.lines.removed[i]) continue;
+    const std::string_view text = c.lines.text[i];
+    const LineSummary* s = c.summary[i];
+    const auto op = c.operations.find(i);
+    const bool op_start = op != c.operations.end();
+    BlockNote note;
+    if ((s && (s->has_move || s->time_s > 0)) || op_start) {
+      note = block_note(text,
+                        block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr,
+                                     c.options.fields, c.mrr_scale),
+                        c.estimate.dialect, style);
+      chunk->load_used = chunk->load_used || (!note.comment.empty() && s && s->spindle_load > 1);
+      chunk->operation_used = chunk->operation_used ||
+                              (!note.comment.empty() && op_start && c.options.fields.operation);
+    }
+    if (note.own_line) {
+      out += note.comment;
+      ours(note.comment, note.comment.size());
+      out += c.lines.eol[i].empty() ? file_eol(c.lines, i) : c.lines.eol[i];
+      ++next;
+    }
+    if (c.header) chunk->output_line[i - first] = next;
+    ++next;
+    // The program's own comments of the block form, in order with ours.
+    const std::vector<FoundComment> alike = block_comments(text);
+    const std::size_t at = note.comment.empty() || note.own_line ? text.size() + 1 : note.at;
+    std::size_t k = 0;
+    auto keep_alike = [&](std::size_t upto) {
+      for (; k < alike.size() && alike[k].begin < upto; ++k) {
+        CommentEvent e;
+        e.keep_hash = keep_hash(alike[k].normal);
+        chunk->events.push_back(std::move(e));
+      }
+    };
+    keep_alike(at);
+    if (note.comment.empty() || note.own_line) {
+      out += text;
+    } else {
+      out += text.substr(0, note.at);
+      out += ' ';
+      out += note.comment;
+      ours(note.comment, text.size() + 1 + note.comment.size());
+      out += text.substr(note.at);
+    }
+    keep_alike(text.size() + 1);
+    out += c.lines.eol[i];
+  }
+  chunk->lines_written = next;
+  return chunk;
+}
+
 } // namespace
 } // namespace annotation
 
@@ -262,8 +373,9 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   if (header_at) output_line.assign(n, 0);
 
   // Every line as it was, old annotations out, each block with its comment after its code or on
-  // a line of its own before it. Written as they come: a program of millions of blocks keeps
-  // none of their comments. The seal counts them, and lists the comments of the same form the
+  // a line of its own before it. The lines are written in chunks on all cores and joined in
+  // order (LineChunk): a program of millions of blocks keeps none of their comments beyond the
+  // chunks in flight. The seal counts our comments, and lists the comments of the same form the
   // program held itself (a user's, or one pasted from an annotated file), to keep.
   std::string out;
   out.reserve(source.text.size() + source.text.size() / 2 + 1024);
@@ -274,60 +386,61 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
   std::vector<KeptComment> keep;
   std::vector<SealSpot> spots;
   bool load_used = false, operation_used = false;
-  auto ours = [&](const std::string& comment, std::size_t line_length) {
-    ++ordinal;
-    ++blocks;
-    sum.add_block(normal_of(comment, style.comment));
-    if (!header_at && spots.size() < 64 && line_length < style.max_line_length)
-      spots.push_back(
-          {out.size() - style.comment.close.size(), style.max_line_length - line_length});
+  const ChunkContext context{lines,
+                             summary,
+                             operations,
+                             options,
+                             estimate,
+                             style,
+                             header_at.has_value(),
+                             header_line,
+                             block_mrr_scale(estimate.inch)};
+  // The chunk's text after what was joined so far; its comments counted in order.
+  auto join = [&](LineChunk& chunk) {
+    const std::size_t base = out.size();
+    if (chunk.header_offset) header_offset = base + *chunk.header_offset;
+    if (header_at)
+      for (std::size_t i = chunk.first; i < chunk.last; ++i)
+        if (!lines.removed[i]) output_line[i] = next + chunk.output_line[i - chunk.first];
+    next += chunk.lines_written;
+    std::size_t normal_at = 0;
+    for (const CommentEvent& e : chunk.events) {
+      ++ordinal;
+      if (!e.ours) {
+        keep.push_back({ordinal, e.keep_hash});
+        continue;
+      }
+      ++blocks;
+      sum.add_block(std::string_view(chunk.normals).substr(normal_at, e.normal_size));
+      normal_at += e.normal_size;
+      if (e.spot_room && spots.size() < 64) spots.push_back({base + e.spot_offset, e.spot_room});
+    }
+    load_used = load_used || chunk.load_used;
+    operation_used = operation_used || chunk.operation_used;
+    out += chunk.text;
   };
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i == header_line) header_offset = out.size();
-    if (lines.removed[i]) continue;
-    const std::string_view text = lines.text[i];
-    const LineSummary* s = summary[i];
-    const auto op = operations.find(i);
-    const bool op_start = op != operations.end();
-    BlockNote note;
-    if ((s && (s->has_move || s->time_s > 0)) || op_start) {
-      note = block_note(text,
-                        block_fields(s, s ? s->end_s : 0.0, op_start ? op->second : nullptr,
-                                     options.fields, block_mrr_scale(estimate.inch)),
-                        estimate.dialect, style);
-      load_used = load_used || (!note.comment.empty() && s && s->spindle_load > 1);
-      operation_used =
-          operation_used || (!note.comment.empty() && op_start && options.fields.operation);
-    }
-    if (note.own_line) {
-      out += note.comment;
-      ours(note.comment, note.comment.size());
-      out += lines.eol[i].empty() ? file_eol(lines, i) : lines.eol[i];
-      ++next;
-    }
-    if (header_at) output_line[i] = next;
-    ++next;
-    // The program's own comments of the block form, in order with ours.
-    const std::vector<FoundComment> alike = block_comments(text);
-    const std::size_t at = note.comment.empty() || note.own_line ? text.size() + 1 : note.at;
-    std::size_t k = 0;
-    auto keep_alike = [&](std::size_t upto) {
-      for (; k < alike.size() && alike[k].begin < upto; ++k)
-        keep.push_back({++ordinal, keep_hash(alike[k].normal)});
-    };
-    keep_alike(at);
-    if (note.comment.empty() || note.own_line) {
-      out += text;
-    } else {
-      out += text.substr(0, note.at);
-      out += ' ';
-      out += note.comment;
-      ours(note.comment, text.size() + 1 + note.comment.size());
-      out += text.substr(note.at);
-    }
-    keep_alike(text.size() + 1);
-    out += lines.eol[i];
-  }
+  constexpr std::size_t kChunkLines = 4096;
+  std::size_t first = 0;
+  tbb::parallel_pipeline(
+      2 * std::size_t(tbb::this_task_arena::max_concurrency()) + 1,
+      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) -> std::size_t {
+                                            if (first >= n) {
+                                              fc.stop();
+                                              return 0;
+                                            }
+                                            const std::size_t at = first;
+                                            first += kChunkLines;
+                                            return at;
+                                          }) &
+          tbb::make_filter<std::size_t, std::shared_ptr<LineChunk>>(
+              tbb::filter_mode::parallel,
+              [&](std::size_t at) {
+                return write_lines(context, at, std::min(n, at + kChunkLines));
+              }) &
+          tbb::make_filter<std::shared_ptr<LineChunk>, void>(
+              tbb::filter_mode::serial_in_order,
+              [&](const std::shared_ptr<LineChunk>& chunk) { join(*chunk); }));
 
   if (header_at) {
     // The header: the summary, the keys, one line for each warning (which names its block's

@@ -159,3 +159,45 @@ TEST_CASE("a file mixing annotations of several runs: annotate takes out what st
           once.text);
   }
 }
+
+TEST_CASE("a program of many thousand lines (written in chunks on several threads) seals and "
+          "strips as a short one") {
+  // annotate() writes lines in chunks of a few thousand and joins them in order: the seal's sum,
+  // the places of the user's comments it keeps, the SEAL field's spot and the output lines the
+  // header's warnings name must be those of the whole file. Pasted annotations (to keep) and
+  // lines too long for their comment (which get a line of their own) in the first chunk and in
+  // later ones; a block with F0 (warned) near the end.
+  const std::string pasted = inline_annotation(annotated(kOther), "G1 X40 F500");
+  const std::string long_code = "G1 X1 Y1 F400 (" + std::string(240, 'a') + ")";
+  std::string program = "G21 G90\nG0 X0 Y0 Z5\n";
+  for (int k = 0; k < 10'000; ++k) {
+    program += "G1 X" + std::to_string(k % 50) + " Y" + std::to_string(k % 7) + " F300";
+    if (k == 3 || k == 5'000 || k == 9'990) program += " (was" + pasted + ")";
+    program += '\n';
+    if (k == 10 || k == 4'200 || k == 8'500) program += long_code + '\n';
+  }
+  program += "G1 X10 F0\nM2\n";
+  for (const AnnotateOptions& options : {AnnotateOptions{}, no_header()}) {
+    const std::string once = annotated(program, std::nullopt, options);
+    const StripResult back = strip_checked(once);
+    CHECK_FALSE(back.by_form); // the seal covers exactly the file's own comments
+    CHECK(back.text == program);
+    CHECK(count(once, "(was" + pasted + ")") == 3);
+    CHECK(annotated(once, std::nullopt, options) == once);
+    if (!options.header) continue;
+    const std::vector<std::string> lines = lines_of(once);
+    int warned = 0; // the F0 block's error and warning
+    for (const std::string& line : lines) {
+      const std::size_t at = line.find(" L", line.find("NCJ WARN"));
+      if (line.find("NCJ WARN") == std::string::npos || line.find("feed rate") == std::string::npos)
+        continue;
+      REQUIRE(at != std::string::npos);
+      const int named = std::stoi(line.substr(at + 2));
+      REQUIRE(named >= 1);
+      REQUIRE(std::size_t(named) <= lines.size());
+      CHECK(lines[std::size_t(named) - 1].rfind("G1 X10 F0", 0) == 0);
+      ++warned;
+    }
+    CHECK(warned == 2);
+  }
+}

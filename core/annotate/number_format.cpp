@@ -32,11 +32,32 @@ std::string clock_text(long hours, int minutes, int seconds) {
 
 } // namespace
 
+// floor(log10(v)) for v > 0, as the library's log10 gives it, without calling it for most
+// values: a block's comment has three or four numbers to place. Away from a power of ten the
+// comparison with the powers is certain; within a relative 1e-9 of one (where log10's last bit
+// could round across the integer) the library decides.
+int decimal_magnitude(double v) {
+  static constexpr double kPowers[] = {1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 1e-1, 1e0,  1e1,  1e2, 1e3,
+                                       1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11, 1e12};
+  constexpr int kFirst = -6;
+  constexpr int kCount = int(sizeof kPowers / sizeof kPowers[0]);
+  if (!(v >= kPowers[0] * (1 + 1e-9)) || !(v < kPowers[kCount - 1] * (1 - 1e-9)))
+    return static_cast<int>(std::floor(std::log10(v)));
+  int k = 0; // kPowers[k] <= v < kPowers[k + 1], roughly
+  while (k + 1 < kCount && kPowers[k + 1] <= v)
+    ++k;
+  const bool near_power =
+      std::fabs(v - kPowers[k]) <= kPowers[k] * 1e-9 ||
+      (k + 1 < kCount && std::fabs(kPowers[k + 1] - v) <= kPowers[k + 1] * 1e-9);
+  if (near_power) return static_cast<int>(std::floor(std::log10(v)));
+  return kFirst + k;
+}
+
 std::string format_significant(double value, int digits, int max_decimals) {
   if (!std::isfinite(value)) return "0";
   int decimals = 0;
   if (value != 0) {
-    const int magnitude = static_cast<int>(std::floor(std::log10(std::fabs(value))));
+    const int magnitude = decimal_magnitude(std::fabs(value));
     // A whole number: its digits in full, and past what a double holds exactly, the
     // significant ones and zeros (never "%.0f"'s binary tail, never an exponent).
     if (magnitude >= digits - 1) return whole_number_text(value, digits);

@@ -11,6 +11,10 @@ namespace ncjoule::annotation {
 // trailing point dropped: 34.5, 1.23, 0.0123, 1235. Rounds to "0" rather than "-0".
 std::string format_significant(double value, int digits, int max_decimals);
 
+// floor(log10(v)) for a finite v > 0, exactly as the library's log10 gives it (the place of the
+// first significant digit), mostly without calling log10.
+int decimal_magnitude(double v);
+
 // Durations: "0.012s", "1.23s", "12.3s", "1m05s", "1h02m03s" (whole seconds from one minute on).
 std::string format_duration(double seconds);
 

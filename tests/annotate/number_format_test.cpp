@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 #include <string>
 
 using namespace ncjoule::annotation;
@@ -124,4 +125,29 @@ TEST_CASE("durations of a minute and more are written as printf wrote them") {
   CHECK(same == checked);
   CHECK(format_duration(3600) == "1h00m00s");
   CHECK(format_duration(60) == "1m00s");
+}
+
+TEST_CASE("the place of a number's first digit is log10's, at and around every power of ten") {
+  // decimal_magnitude compares with the powers of ten and leaves values near one to log10: the
+  // decimals of every number an annotation writes hang on it.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> exponent(-9, 15);
+  std::size_t differ = 0, checked = 0;
+  auto check = [&](double v) {
+    ++checked;
+    if (decimal_magnitude(v) != int(std::floor(std::log10(v)))) ++differ;
+  };
+  for (int k = 0; k < 200'000; ++k)
+    check(std::pow(10.0, exponent(rng)));
+  for (int e = -9; e <= 15; ++e) {
+    const double p = std::pow(10.0, e);
+    double below = p, above = p;
+    for (int step = 0; step < 50; ++step) {
+      check(below), check(above);
+      below = std::nextafter(below, 0.0), above = std::nextafter(above, 1e300);
+    }
+    check(p * (1 - 1e-9)), check(p * (1 + 1e-9)), check(p * (1 - 2e-9)), check(p * (1 + 2e-9));
+  }
+  CHECK(checked > 200'000);
+  CHECK(differ == 0);
 }

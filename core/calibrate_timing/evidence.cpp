@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "ncjoule/calibrate_timing.hpp"
 
@@ -24,9 +25,9 @@ std::string percent(double x) {
 
 // Logged path speed over the programmed feed on the run's steady feed lines: single lines the
 // log shows on their own, predicted to take a second or more, away from their ends.
-double feed_ratio(const LogRun& run, const LoggedRun& r, const LoggedProgram& p,
-                  const LogEvidence& evidence) {
-  if (run.feed.empty()) return 0;
+std::vector<double> feed_ratios(const LogRun& run, const LoggedRun& r, const LoggedProgram& p,
+                                const LogEvidence& evidence) {
+  if (run.feed.empty()) return {};
   std::vector<double> peak(p.source.lines.size() + 2, 0.0);
   std::vector<double> time(p.source.lines.size() + 2, 0.0);
   std::vector<char> is_feed(p.source.lines.size() + 2, 0);
@@ -52,7 +53,24 @@ double feed_ratio(const LogRun& run, const LoggedRun& r, const LoggedProgram& p,
     if (it->t_s <= g.start_s + 0.1 || !(it->value > 0)) continue;
     ratios.push_back(it->value / peak[line] / evidence.feed_at(r, g.start_s));
   }
+  return ratios;
+}
+
+double feed_ratio(const LogRun& run, const LoggedRun& r, const LoggedProgram& p,
+                  const LogEvidence& evidence) {
+  const std::vector<double> ratios = feed_ratios(run, r, p, evidence);
   return ratios.size() >= 5 ? median(ratios) : 0;
+}
+
+// How far a program's feeds are from the logged speeds, line by line: the mean of |log ratio|,
+// each capped at a factor of 1.5 (a line the log caught while slowing down counts once). Of two
+// programs that differ in one operation's feed, the one that ran has its lines at 0 there.
+double feed_misfit(const std::vector<double>& ratios) {
+  if (ratios.size() < 5) return INFINITY;
+  double sum = 0;
+  for (double x : ratios)
+    sum += std::min(std::abs(std::log(x)), std::log(1.5));
+  return sum / double(ratios.size());
 }
 
 // Measured over predicted time of the run's stretches of rapid lines alone.
@@ -126,10 +144,50 @@ bool needs_rapid_override(const LogEvidence& evidence, std::size_t program) {
   return false;
 }
 
+// A run whose lines fit several programs alike ran the one whose feeds its logged path speeds
+// show (programs of one toolpath at different feeds and speeds, a test plan: the first given is
+// not the one that ran, and two may differ in one operation's feed only). The program whose
+// feeds are nearest the logged speeds line by line (feed_misfit) is taken, when its median
+// speed/F is within the tolerance; the alignment's note says so. Only among programs of the same
+// lines as the one taken, so that the run's line groups hold for each.
+void pick_by_feeds(LogEvidence& evidence, LoggedRun& r, double tolerance) {
+  RunAlignment& a = evidence.alignments[r.run];
+  if (a.alike.size() < 2) return;
+  const LogRun& run = evidence.runs[r.run];
+  const LoggedProgram& taken = evidence.programs[r.program];
+  const std::vector<double> taken_ratios = feed_ratios(run, r, taken, evidence);
+  std::size_t best = r.program;
+  double best_misfit = feed_misfit(taken_ratios);
+  for (std::size_t k : a.alike) {
+    const LoggedProgram& p = evidence.programs[k];
+    if (k == r.program || p.outline.lines != taken.outline.lines) continue;
+    const std::vector<double> ratios = feed_ratios(run, r, p, evidence);
+    const double misfit = feed_misfit(ratios);
+    if (misfit < best_misfit && std::abs(median(ratios) - 1) <= tolerance)
+      best = k, best_misfit = misfit;
+  }
+  if (best == r.program) return;
+  const std::string was = taken.outline.name;
+  r.program = best;
+  a.program = std::ptrdiff_t(best);
+  char text[200];
+  std::snprintf(text, sizeof text,
+                " (its logged speeds match its feeds best: with %s's its feed lines ran at %s of "
+                "F)",
+                was.c_str(), percent(taken_ratios.size() >= 5 ? median(taken_ratios) : 0).c_str());
+  const std::string now = evidence.programs[best].outline.name;
+  for (std::vector<std::string>* notes : {&r.notes, &a.notes})
+    for (std::string& n : *notes)
+      if (const std::size_t at = n.rfind(": taken as " + was);
+          n.rfind("its lines fit", 0) == 0 && at != std::string::npos)
+        n = n.substr(0, at) + ": taken as " + now + text;
+}
+
 void judge_runs(LogEvidence& evidence, const std::vector<LineTimes>& times,
                 const EvidenceOptions& options) {
   std::vector<double> rapid_ratios;
   for (LoggedRun& r : evidence.program_runs) {
+    pick_by_feeds(evidence, r, options.feed_ratio_tolerance);
     const LogRun& run = evidence.runs[r.run];
     const LoggedProgram& p = evidence.programs[r.program];
     r.feed_ratio = feed_ratio(run, r, p, evidence);

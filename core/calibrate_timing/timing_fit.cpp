@@ -423,15 +423,18 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
 
   // Uncertainties: the covariance of the fitted parameters, scaled by the residuals' variance.
   std::size_t n_fitted = theta.size() + fitted_linear.size();
+  std::vector<double> residual_s; // predicted - measured, per observation, as fitted
   std::vector<double> se_theta(theta.size(), NAN), se_lin(lin.size(), NAN);
   {
     double sse = 0;
     const std::vector<double> m = theta.empty() ? fixed_motion : model.motion(fitted_plan, theta);
     double sse_s = 0;
+    residual_s.resize(n_obs);
     for (std::size_t o = 0; o < n_obs; ++o) {
       double p = m[o];
       for (std::size_t k = 0; k < lin.size(); ++k)
         p += lin[k] * model.count(o, k);
+      residual_s[o] = p - observations[o].measured_s;
       const double r = (p - observations[o].measured_s) / observations[o].sigma_s;
       sse += r * r;
       sse_s += (p - observations[o].measured_s) * (p - observations[o].measured_s);
@@ -470,6 +473,9 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
       }
     }
   }
+
+  for (std::string& note : timing_detail::run_disagreements(model, residual_s, lin, fitted_linear))
+    fit.notes.push_back(std::move(note));
 
   // Results.
   char data[160];

@@ -62,6 +62,16 @@ struct KeySelection {
 KeySelection select_keys(const std::vector<KeyColumn>& columns, const Eigen::VectorXd& misfit,
                          double sigma_s);
 
+class TimingModel;
+// run_agreement.cpp: for each fitted key that only adds time, whether the usable runs split into
+// two kinds whose own values are far apart (a setting that changed between runs); a note for
+// each such key, naming the runs of each kind. `residual_s`: predicted - measured per
+// observation with the fitted values.
+std::vector<std::string> run_disagreements(const TimingModel& model,
+                                           const std::vector<double>& residual_s,
+                                           const std::vector<double>& linear_values,
+                                           const std::vector<std::size_t>& fitted_linear);
+
 inline double cosine(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
   const double na = a.norm(), nb = b.norm();
   return na > 0 && nb > 0 ? a.dot(b) / (na * nb) : 0;

@@ -295,6 +295,9 @@ std::vector<RunAlignment> align_runs(const std::vector<LogRun>& runs,
     for (const TimedValue& m : r.marks)
       if (m.value != a.marks.back().value) a.marks.push_back(m);
     if (!named && fitting.size() > 1)
+      for (const auto& f : fitting)
+        a.alike.push_back(f.first);
+    if (!named && fitting.size() > 1)
       a.notes.push_back("its lines fit " + std::to_string(fitting.size()) +
                         " of the programs given alike" +
                         (run.program.empty() ? "" : " and the log names " + run.program) +

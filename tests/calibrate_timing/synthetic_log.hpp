@@ -106,23 +106,25 @@ inline std::string synthetic_run(const Estimate& e, double t0, double jitter, in
   return out;
 }
 
-// Evidence from runs of kSyntheticProgram planned on `truth`, compared with `machine`.
-inline LogEvidence synthetic_evidence(const MachineProfile& truth, const MachineProfile& machine,
-                                      int runs, double jitter, double rapid_override_pct = -1,
-                                      const char* program = kSyntheticProgram) {
+// Evidence from runs of `program`, run k planned on truths[k], compared with `machine`.
+inline LogEvidence synthetic_evidence_of(const std::vector<MachineProfile>& truths,
+                                         const MachineProfile& machine, double jitter,
+                                         double rapid_override_pct = -1,
+                                         const char* program = kSyntheticProgram) {
   LogEvidence evidence;
   LoggedProgram p;
   p.source = make_source("synthetic.nc", program);
   p.outline = outline_program(p.source);
   p.options.simulate_removal = false;
-  MachineProfile true_run = truth;
-  if (rapid_override_pct >= 0)
-    for (AxisLimits& a : true_run.kinematics.axes)
-      a.rapid_mm_s *= rapid_override_pct / 100;
-  const Estimate e = estimate_program(p.source, true_run, p.options);
   std::string shdr;
-  for (int k = 0; k < runs; ++k)
-    shdr += synthetic_run(e, 3600.0 * (k + 1), jitter, k + 1, rapid_override_pct);
+  for (std::size_t k = 0; k < truths.size(); ++k) {
+    MachineProfile true_run = truths[k];
+    if (rapid_override_pct >= 0)
+      for (AxisLimits& a : true_run.kinematics.axes)
+        a.rapid_mm_s *= rapid_override_pct / 100;
+    const Estimate e = estimate_program(p.source, true_run, p.options);
+    shdr += synthetic_run(e, 3600.0 * double(k + 1), jitter, int(k) + 1, rapid_override_pct);
+  }
   std::vector<Diagnostic> d;
   LogMapping mapping;
   mapping.items[LogSignal::RapidOverride] = "Rapid_Override";
@@ -135,6 +137,14 @@ inline LogEvidence synthetic_evidence(const MachineProfile& truth, const Machine
   evidence.programs.push_back(std::move(p));
   gather_runs(evidence);
   return evidence;
+}
+
+// Evidence from `runs` runs of `program` planned on `truth`, compared with `machine`.
+inline LogEvidence synthetic_evidence(const MachineProfile& truth, const MachineProfile& machine,
+                                      int runs, double jitter, double rapid_override_pct = -1,
+                                      const char* program = kSyntheticProgram) {
+  return synthetic_evidence_of(std::vector<MachineProfile>(std::size_t(runs), truth), machine,
+                               jitter, rapid_override_pct, program);
 }
 
 inline std::vector<LineTimes> plan_all(const LogEvidence& e, const MachineProfile& machine) {

@@ -199,3 +199,34 @@ TEST_CASE("calibrated profile: fitted keys in place of the base's, the rest as i
   REQUIRE(out.kinematics.spindle_run_up.size() == 2);
   CHECK(out.kinematics.spindle_run_up[1].first == 2000);
 }
+
+TEST_CASE("timing fit: runs of two kinds (a wait set otherwise between them) are said, not "
+          "silently averaged") {
+  // Two runs that stop 1.5 s at M1, two that stop 6 s (the control's setting changed between
+  // them): one value fits neither kind, and the note names the runs of each.
+  const MachineProfile base = shipped_profile("hurco-vmx24");
+  MachineProfile short_wait = true_machine(), long_wait = true_machine();
+  long_wait.kinematics.waits.optional_stop_s = 6.0;
+  LogEvidence evidence =
+      synthetic_evidence_of({short_wait, long_wait, short_wait, long_wait}, base, 0.03);
+  judge_runs(evidence, plan_all(evidence, base));
+  TimingFitOptions options;
+  options.min_stretch_s = 0;
+  const TimingFit fit = fit_timing(evidence, base, options);
+  REQUIRE(fit.runs == 4);
+  std::string said;
+  for (const std::string& n : fit.notes)
+    if (n.find("the runs disagree") != std::string::npos) said += n + "\n";
+  CAPTURE(said);
+  CHECK(said.find("kinematics.waits.optional_stop_s") != std::string::npos);
+  CHECK(said.find("runs 1, 3 and") != std::string::npos); // the short-wait runs first
+  CHECK(said.find("runs 2, 4;") != std::string::npos);
+  CHECK(said.find("coolant_on") == std::string::npos); // the keys they agree on: nothing
+
+  // Runs of one kind: no note.
+  LogEvidence same = synthetic_evidence(short_wait, base, 4, 0.03);
+  judge_runs(same, plan_all(same, base));
+  const TimingFit agreed = fit_timing(same, base, options);
+  for (const std::string& n : agreed.notes)
+    CHECK(n.find("the runs disagree") == std::string::npos);
+}

@@ -241,6 +241,11 @@ struct RunAlignment {
   std::ptrdiff_t program = -1; // index into the programs; -1: none fits
   bool name_matches = false;   // the logged program name is this program's
   std::size_t candidates = 0;  // programs whose lines the run fits
+  // When the lines fit several programs alike and the log's name did not decide: all of them
+  // (indices into the programs, the one taken among them), in the order given. Programs that
+  // differ only in their feeds (a test of feeds and speeds) fit alike: what the machine ran is
+  // then told by its logged speeds (calibrate_timing's judge_runs).
+  std::vector<std::size_t> alike;
   LineNumbering numbering = LineNumbering::Auto;
   // (time, 1-based file line) each time the running line changed, nondecreasing in line; the
   // first is the run's start at line 1 (the lines before the first logged one ran there).

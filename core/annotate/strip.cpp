@@ -28,6 +28,18 @@ bool may_hold_legacy(std::string_view text) {
   return false;
 }
 
+// Whether the text holds "NCJ" in any case: every comment and header line of this version
+// starts with it, so a text without it holds none (most programs, the first time they are
+// annotated: strip and annotate then skip the per-line search).
+bool may_hold_current(std::string_view text) {
+  for (std::size_t at = text.find_first_of("Nn"); at != std::string_view::npos;
+       at = text.find_first_of("Nn", at + 1))
+    if (at + 2 < text.size() && (text[at + 1] == 'C' || text[at + 1] == 'c') &&
+        (text[at + 2] == 'J' || text[at + 2] == 'j'))
+      return true;
+  return false;
+}
+
 // Earlier versions' inline comments on `l`: " (NCJ ... CK=XXXXXX)" or " ;NCJ ... CK=XXXXXX",
 // sealed with the file's key (`seed`) or with their own line. Each as [begin, end).
 std::vector<std::pair<std::size_t, std::size_t>> legacy_inline(std::string_view l,
@@ -67,7 +79,7 @@ std::vector<LineSpan> split_lines(std::string_view text) {
 Annotations::Annotations(std::string_view text, const std::vector<LineSpan>& lines)
     : text_(text), lines_(lines), whole_(lines.size(), false) {
   if (may_hold_legacy(text)) find_legacy();
-  find_current();
+  if (may_hold_current(text)) find_current();
   std::sort(spans_.begin(), spans_.end(), [](const Span& a, const Span& b) {
     return a.line != b.line ? a.line < b.line : a.begin < b.begin;
   });
@@ -315,6 +327,7 @@ bool Annotations::strip_inline(std::size_t i, std::string& out) const {
 
 StripResult strip_checked(std::string_view text) {
   using namespace annotation;
+  if (!may_hold_legacy(text) && !may_hold_current(text)) return {std::string(text), false};
   const std::vector<LineSpan> lines = split_lines(text);
   const Annotations annotations(text, lines);
   StripResult result;
@@ -339,6 +352,7 @@ std::string strip(std::string_view text) {
 
 bool has_annotations(std::string_view text) {
   using namespace annotation;
+  if (!may_hold_legacy(text) && !may_hold_current(text)) return false;
   const std::vector<LineSpan> lines = split_lines(text);
   return Annotations(text, lines).any();
 }

@@ -91,6 +91,23 @@ TEST_CASE("a file turned to upper case by an editor still strips") {
   CHECK(strip(once) == original);
 }
 
+TEST_CASE("a file turned to lower case still strips; a file without 'ncj' in any case is left") {
+  // strip reads no line of a text that holds "NCJ" in no case (most programs): the check must be
+  // as blind to case as the annotations' form is.
+  const std::string original = "g21 g90\ng0 x10\ng1 x20 f100\nm2\n";
+  std::string once = annotated(original);
+  for (char& c : once)
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+  CHECK(has_annotations(once));
+  CHECK(strip(once) == original);
+  const std::string mixed = "G21\nG0 X1 (nCj T=1s)\nG1 X2 F100 (Ncj T=1s)\nG1 X3 (NCj T=1s)\nM2\n";
+  CHECK(strip(mixed) == "G21\nG0 X1\nG1 X2 F100\nG1 X3\nM2\n"); // by their form
+  const std::string none = "G21\nG0 X1 (NC JOB)\nG1 X2 F100 (N C J)\nM2\n";
+  CHECK_FALSE(has_annotations(none));
+  CHECK(strip_checked(none).text == none);
+  CHECK_FALSE(strip_checked(none).by_form);
+}
+
 TEST_CASE("strip takes the space annotate inserted and keeps the user's own blanks") {
   const std::string original = "G21\nG0 X1  \t\nG1 X2 F100\t(c)\nG1 X3(c)\nM2\n";
   const std::string once = annotated(original);

@@ -75,6 +75,22 @@ ArcGeometry arc_geometry(const CanonCommand& arc) {
   return g;
 }
 
+void arc_bounds(const CanonCommand& arc, Pose& low, Pose& high) {
+  const PlaneCoords s = to_plane(arc.start, arc.plane);
+  const PlaneCoords e = to_plane(arc.end, arc.plane);
+  const double cf = arc.centre_first, cs = arc.centre_second;
+  // point_on_move's radius runs from the start's to the end's (a spiral), its normal coordinate
+  // from the start's to the end's; each rounding stays far inside the margin.
+  const double r =
+      std::max(std::hypot(s.first - cf, s.second - cs), std::hypot(e.first - cf, e.second - cs));
+  const double margin =
+      1e-9 * (1 + std::abs(cf) + std::abs(cs) + r + std::abs(s.normal) + std::abs(e.normal));
+  from_plane(low, arc.plane,
+             {cf - r - margin, cs - r - margin, std::min(s.normal, e.normal) - margin});
+  from_plane(high, arc.plane,
+             {cf + r + margin, cs + r + margin, std::max(s.normal, e.normal) + margin});
+}
+
 Pose point_on_move(const CanonCommand& move, double u) {
   if (move.kind != CanonKind::Arc) {
     Pose p;

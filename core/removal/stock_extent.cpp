@@ -54,6 +54,18 @@ void StockExtent::Extent::include(const Pose& p) {
   zmin = std::min(zmin, p.z), zmax = std::max(zmax, p.z);
 }
 
+// An arc's sides bulge past its end points: walk along it, unless the extent holds its whole
+// circle already (then no point of it can widen the extent: most arcs of a long program).
+void StockExtent::include_arc(Extent& into, const CanonCommand& arc) {
+  Pose low, high;
+  arc_bounds(arc, low, high);
+  if (into.xmin <= low.x && high.x <= into.xmax && into.ymin <= low.y && high.y <= into.ymax &&
+      into.zmin <= low.z && high.z <= into.zmax)
+    return;
+  for (int k = 1; k < 64; ++k)
+    into.include(point_on_move(arc, k / 64.0));
+}
+
 void StockExtent::Extent::include(const Extent& e) {
   xmin = std::min(xmin, e.xmin), xmax = std::max(xmax, e.xmax);
   ymin = std::min(ymin, e.ymin), ymax = std::max(ymax, e.ymax);
@@ -148,19 +160,14 @@ void StockExtent::add_level(PerTool& t, const CanonCommand& cmd) {
     Extent& low = plunged ? it->after_low : it->before_low;
     low.include(cmd.start);
     low.include(cmd.end);
-    if (cmd.kind == CanonKind::Arc)
-      for (int k = 1; k < 64; ++k)
-        low.include(point_on_move(cmd, k / 64.0));
+    if (cmd.kind == CanonKind::Arc) include_arc(low, cmd);
   }
 }
 
 void StockExtent::include_move(PerTool& t, Extent& into, const CanonCommand& cmd) {
   into.include(cmd.start);
   into.include(cmd.end);
-  // An arc's sides bulge past its end points: walk along it.
-  if (cmd.kind == CanonKind::Arc)
-    for (int k = 1; k < 64; ++k)
-      into.include(point_on_move(cmd, k / 64.0));
+  if (cmd.kind == CanonKind::Arc) include_arc(into, cmd);
   t.top_start = std::max(t.top_start, cmd.start.z);
   t.length += move_length(cmd);
   if (levels_.size() < kMaxLevels) {

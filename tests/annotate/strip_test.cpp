@@ -91,7 +91,8 @@ TEST_CASE("a file turned to upper case by an editor still strips") {
   CHECK(strip(once) == original);
 }
 
-TEST_CASE("a file turned to lower case still strips; a file without 'ncj' in any case is left") {
+TEST_CASE(
+    "a file turned to lower case still strips, one without 'ncj' in any case is left as it is") {
   // strip reads no line of a text that holds "NCJ" in no case (most programs): the check must be
   // as blind to case as the annotations' form is.
   const std::string original = "g21 g90\ng0 x10\ng1 x20 f100\nm2\n";

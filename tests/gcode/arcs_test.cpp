@@ -162,7 +162,8 @@ TEST_CASE("G93 arcs get the feed that makes them last 1/F minutes") {
   CHECK(rates[0].value == doctest::Approx(5 * std::numbers::pi * 2)); // length * F
 }
 
-TEST_CASE("a full circle of zero radius: no motion with a warning under Mach3, refused by LinuxCNC") {
+TEST_CASE(
+    "a full circle of zero radius: no motion with a warning under Mach3, refused by LinuxCNC") {
   // Eagle's stepcraft.ulp writes one for every hole smaller than its bit.
   const std::string text = "G21 G90\nG0 X1 Y1 Z0\nG1 Z-0.15 F30\nG3 X1 Y1 I0.000 F360\nG0 Z1\nM2\n";
   const Toolpath mach3 = run(text, "mach3");
@@ -176,4 +177,33 @@ TEST_CASE("a full circle of zero radius: no motion with a warning under Mach3, r
   CHECK(errors(run(text, "linuxcnc")) == 1);
   // A zero-radius arc that goes somewhere is an error everywhere.
   CHECK(errors(run("G21 G90\nG0 X1 Y1 Z0\nG3 X2 Y1 I0 J0 F100\nM2\n", "mach3")) >= 1);
+}
+
+TEST_CASE("arc_bounds holds every point of the arc, in every plane, helices and spirals too") {
+  // The stock's extent skips walking along an arc its box already holds: the box must hold
+  // every point point_on_move gives, and be no more than a hair larger than the circle.
+  const Toolpath p = run("G21\nG0 X0 Y0 Z0\nG17 G3 X0 Y0 I5 J0 Z-2 P3 F100\n"
+                         "G18 G2 X10 Z0 I5 K0 Y4\nG19 G3 Y4 Z6 J0 K3 X-1\n"
+                         "G17 G2 X20 Y1 I5.2 J0.5\nG17 G3 X40000 Y80000 I20000 J40000\nM2\n");
+  std::size_t arcs = 0;
+  for (const CanonCommand& c : move_commands(p)) {
+    if (c.kind != CanonKind::Arc) continue;
+    ++arcs;
+    Pose low, high;
+    arc_bounds(c, low, high);
+    // No wider than the circle and the axis's travel (a spiral's end radius is at most its
+    // start radius and the chord).
+    const double chord = std::hypot(c.end.x - c.start.x, c.end.y - c.start.y, c.end.z - c.start.z);
+    const double r = arc_geometry(c).radius + chord + 1e-6;
+    CHECK(high.x - low.x <= 2 * r + std::abs(c.end.x - c.start.x));
+    CHECK(high.y - low.y <= 2 * r + std::abs(c.end.y - c.start.y));
+    CHECK(high.z - low.z <= 2 * r + std::abs(c.end.z - c.start.z));
+    for (int k = 0; k <= 4096; ++k) {
+      const Pose q = point_on_move(c, k / 4096.0);
+      CHECK((low.x <= q.x && q.x <= high.x && low.y <= q.y && q.y <= high.y && low.z <= q.z &&
+             q.z <= high.z));
+    }
+  }
+  CHECK(errors(p) == 0);
+  CHECK(arcs == 5);
 }

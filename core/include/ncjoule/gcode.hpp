@@ -284,6 +284,10 @@ struct ArcGeometry {
 ArcGeometry arc_geometry(const CanonCommand& arc);
 // Point on a move (line or arc) at fraction u in [0, 1] of its parameter.
 Pose point_on_move(const CanonCommand& move, double u);
+// A box (X, Y and Z of `low` and `high`) that holds every point point_on_move gives on an arc:
+// its circle's square in the plane and its rise along the normal, a hair larger. Where a box
+// already holds it, no point of the arc can widen it: the points need not be worked out.
+void arc_bounds(const CanonCommand& arc, Pose& low, Pose& high);
 // Length of a move's path in mm (linear axes only).
 double move_length(const CanonCommand& move);
 // How far each linear axis (X, Y, Z) travels over a move in mm, out and back both counted: a

@@ -278,6 +278,8 @@ private:
   void add_level(PerTool& t, const CanonCommand& cmd);
   // Where a move counts in any case: its extent's corners and arc sides, length, levels.
   void include_move(PerTool& t, Extent& into, const CanonCommand& cmd);
+  // An arc's points into an extent (its end points are included by the caller).
+  static void include_arc(Extent& into, const CanonCommand& arc);
   // The tool's held hop moves as cuts.
   void flush_hop(PerTool& t);
   bool holds_hops() const;

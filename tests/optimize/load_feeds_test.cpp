@@ -44,9 +44,11 @@ const char* kProgram = "%\n"
                        "M30\n"
                        "%\n";
 
+constexpr const char* kStock = "box:0,0,-10,40,20,0";
+
 EstimateOptions with_stock() {
   EstimateOptions eo;
-  eo.stock = parse_stock_spec("box:0,0,-10,40,20,0");
+  eo.stock = parse_stock_spec(kStock);
   return eo;
 }
 
@@ -58,16 +60,11 @@ struct Run {
 
 Run optimize_loads(const OptimizeOptions& options) {
   const SourceFile source = make_source("load.nc", kProgram);
-  EstimateOptions eo = with_stock();
-  std::vector<CanonCommand> commands;
-  eo.keep_commands = &commands;
+  const Started started(source, kStock);
   Run run;
-  run.before = estimate_program(source, machine(), eo);
-  REQUIRE(run.before.removal);
-  const std::unique_ptr<OptimizeStart> start =
-      optimize_start(source, run.before, commands, machine().kinematics);
-  run.rpm = start->rpm_by_line;
-  run.loaded = plan_with_load_feeds(start->input, options, [&](const OptimizedText& text) {
+  run.before = started.before;
+  run.rpm = started.start->rpm_by_line;
+  run.loaded = plan_with_load_feeds(started.start->input, options, [&](const OptimizedText& text) {
     const Estimate e =
         estimate_program(make_source("load-opt.nc", text.text), machine(), with_stock());
     return mean_spindle_loads(e, run.rpm, &text.original_line);
@@ -176,16 +173,11 @@ TEST_CASE("load feeds put the original F back for a block that relies on it") {
                               "G0 Z20.\n"
                               "M30\n";
   const SourceFile source = make_source("load.nc", program);
-  EstimateOptions eo = with_stock();
-  std::vector<CanonCommand> commands;
-  eo.keep_commands = &commands;
-  const Estimate before = estimate_program(source, machine(), eo);
-  REQUIRE(before.removal);
-  const std::unique_ptr<OptimizeStart> start =
-      optimize_start(source, before, commands, machine().kinematics);
+  const Started started(source, kStock);
+  const Estimate& before = started.before;
   OptimizeOptions options = load_only();
   options.max_feed_factor = 1;
-  const OptimizePlan plan = plan_optimization(start->input, options);
+  const OptimizePlan plan = plan_optimization(started.start->input, options);
   const BlockEdit* slot = edit_on(plan, 5);
   REQUIRE(slot);
   CHECK(slot->feed_mm_min < 5000);

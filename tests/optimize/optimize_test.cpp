@@ -46,16 +46,10 @@ struct Run {
 
 Run optimize_text(const std::string& text, const OptimizeOptions& options = {}) {
   const SourceFile source = make_source("air.nc", text);
-  EstimateOptions eo;
-  eo.stock = parse_stock_spec("box:0,0,-10,40,20,0");
-  std::vector<CanonCommand> commands;
-  eo.keep_commands = &commands;
+  const Started started(source, "box:0,0,-10,40,20,0");
   Run run;
-  run.before = estimate_program(source, machine(), eo);
-  REQUIRE(run.before.removal);
-  const std::unique_ptr<OptimizeStart> start =
-      optimize_start(source, run.before, commands, machine().kinematics);
-  run.plan = plan_optimization(start->input, options);
+  run.before = started.before;
+  run.plan = plan_optimization(started.start->input, options);
   run.out = write_optimized(source, run.before.dialect, run.plan);
   return run;
 }

@@ -1,9 +1,13 @@
 // What the optimize tests share: the machine they run on, and ways to look at a plan and a text.
 #pragma once
 
+#include <doctest/doctest.h>
+
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "ncjoule/estimate.hpp"
 #include "ncjoule/optimize.hpp"
 #include "ncjoule/profile.hpp"
 
@@ -14,6 +18,24 @@ inline const MachineProfile& machine() {
       load_profile(std::string(NCJOULE_SOURCE_DIR) + "/samples/machines/generic-3axis.toml");
   return profile;
 }
+
+// What optimize starts from: the program estimated on the stock `stock`, its commands kept,
+// and the plan's input made from them (which points into both: keep this while it is used).
+struct Started {
+  Started(const SourceFile& source, const std::string& stock) {
+    EstimateOptions eo;
+    eo.stock = parse_stock_spec(stock);
+    eo.keep_commands = &commands;
+    before = estimate_program(source, machine(), eo);
+    REQUIRE(before.removal);
+    start = optimize_start(source, before, commands, machine().kinematics);
+  }
+  Started(const Started&) = delete;
+  Started& operator=(const Started&) = delete;
+  std::vector<CanonCommand> commands;
+  Estimate before;
+  std::unique_ptr<OptimizeStart> start;
+};
 
 // The edit the plan makes on a 0-based source line; null when none.
 inline const BlockEdit* edit_on(const OptimizePlan& plan, int line) {

@@ -170,11 +170,10 @@ void pick_by_feeds(LogEvidence& evidence, LoggedRun& r, double tolerance) {
   const std::string was = taken.outline.name;
   r.program = best;
   a.program = std::ptrdiff_t(best);
-  char text[200];
-  std::snprintf(text, sizeof text,
-                " (its logged speeds match its feeds best: with %s's its feed lines ran at %s of "
-                "F)",
-                was.c_str(), percent(taken_ratios.size() >= 5 ? median(taken_ratios) : 0).c_str());
+  // Composed, not printed into a buffer: a program's name may be long.
+  const std::string text = " (its logged speeds match its feeds best: with " + was +
+                           "'s its feed lines ran at " +
+                           percent(taken_ratios.size() >= 5 ? median(taken_ratios) : 0) + " of F)";
   const std::string now = evidence.programs[best].outline.name;
   for (std::vector<std::string>* notes : {&r.notes, &a.notes})
     for (std::string& n : *notes)

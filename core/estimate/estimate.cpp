@@ -281,6 +281,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   if (!interpreter.dialect && !options.detect_dialect)
     interpreter.dialect = find_dialect(machine.dialect); // "auto" finds none: detected
   interpreter.fallback_dialect = find_dialect(machine.fallback_dialect);
+  interpreter.same_choice_as_before = options.dialect_choice;
   interpreter.tools = options.tool_table;
   // Where the work sits: the profile's setup, with the job file's work offsets in place of its.
   WorkSetup setup = machine.setup;
@@ -328,6 +329,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   e.dialect = run.dialect;
   e.dialect_origin = run.dialect_origin;
   e.dialect_reason = run.dialect_reason;
+  const DialectChoice first_choice{e.dialect, e.dialect_origin, e.dialect_reason};
   e.blocks = run.blocks;
   e.commands = run.commands;
   e.program_end = run.program_end;
@@ -407,7 +409,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
     std::vector<StockExtent> mirrored(scan.extents.size());
     if (removal_options.mirror_z) {
       InterpreterOptions again = interpreter;
-      again.dialect = e.dialect;
+      again.same_choice_as_before = first_choice;
       again.keep_diagnostics = false;
       estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
       std::size_t index = 0;
@@ -472,8 +474,8 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   // at once, the interpreter and the planner each on a thread of its own and the folding
   // (removal, energy) here, handing commands on in order (stage_queue.hpp).
   InterpreterOptions again = interpreter;
-  again.dialect = e.dialect;      // as the first pass chose it
-  again.keep_diagnostics = false; // the first pass gave them
+  again.same_choice_as_before = first_choice; // as the first pass chose it
+  again.keep_diagnostics = false;             // the first pass gave them
   std::size_t streamed = 0;
   estimate_detail::WorkBudget work_budget(options.max_path_samples,
                                           options.simulate_removal ? options.max_removal_work : 0,

@@ -23,10 +23,12 @@ Interpreter::Interpreter(const SourceFile& source, const InterpreterOptions& opt
                          const CanonSink& sink)
     : source_(source), options_(options), sink_(sink), tools_(options.tools) {
   line_count_ = source.lines.size();
-  DialectChoice choice = options.dialect
+  DialectChoice choice = options.same_choice_as_before ? *options.same_choice_as_before
+                         : options.dialect
                              ? DialectChoice{*options.dialect, DialectOrigin::Given, "given"}
                              : choose_dialect(source);
-  if (choice.origin == DialectOrigin::Default && options.fallback_dialect)
+  if (choice.origin == DialectOrigin::Default && options.fallback_dialect &&
+      !options.same_choice_as_before)
     choice = {*options.fallback_dialect, DialectOrigin::Given,
               "the machine's control; nothing in the program names another"};
   dialect_ = choice.dialect;

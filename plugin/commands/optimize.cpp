@@ -224,7 +224,9 @@ int run_optimize(const OptimizeCliOptions& o) {
   const std::map<int, double>& rpm = start->rpm_by_line;
   EstimateOptions second = *options;
   second.progress = progress.callback();
-  if (!second.dialect) second.dialect = before.dialect;
+  if (!second.dialect)
+    second.dialect_choice =
+        DialectChoice{before.dialect, before.dialect_origin, before.dialect_reason};
   // The written text estimated as the check needs it; rule c asks it for the loads it predicts.
   std::optional<Estimate> after;
   std::string after_text;

@@ -139,3 +139,29 @@ TEST_CASE("a program that turns a rotary axis: removal is labelled an approximat
   REQUIRE(indexed.setups.size() == 2);
   CHECK(indexed.setups[1].reason == "the part turned: B180 (a rotary index)");
 }
+
+TEST_CASE("a program no dialect is named for is timed as its first pass read it") {
+  // Nothing names a control: what only LinuxCNC refuses is warned of and run (a G28 with a
+  // bare axis letter, an M0 with the operator's prompt after it). The blocks timed are the
+  // blocks read, in the estimate's second pass as in its first.
+  const MachineProfile machine = generic();
+  const Estimate e = estimate_program(
+      make_source("lenient.nc", "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nG28 Z\n"
+                                "M0 Turn ON spindle\nG0 X20\nM2\n"),
+      machine, {});
+  REQUIRE_FALSE(e.failed);
+  CHECK(e.dialect_origin == DialectOrigin::Default);
+  CHECK(warned(e, "word 'Z' has no number after it"));
+  auto line = [&](int number) { // 1-based
+    for (const LineSummary& l : e.lines)
+      if (l.line + 1 == number) return l;
+    FAIL("no summary of line " << number);
+    return LineSummary{};
+  };
+  const LineSummary home = line(5); // G28 Z: a rapid to the home position
+  CHECK(home.kind == LineKind::Rapid);
+  CHECK(home.commands >= 1);
+  CHECK(home.time_s > 0);
+  CHECK(line(6).kind == LineKind::ProgramStop);
+  CHECK(line(6).commands == 1);
+}

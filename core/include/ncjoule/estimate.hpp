@@ -28,6 +28,9 @@ namespace ncjoule {
 struct EstimateOptions {
   std::optional<Dialect> dialect; // empty: the machine's dialect, else detected from the file
   bool detect_dialect = false;    // detect even when the machine names a dialect (--dialect auto)
+  // The choice an estimate of the same program made (optimize's check of its rewrite), over
+  // `dialect`: read as it was, leniently where nothing named a dialect.
+  std::optional<DialectChoice> dialect_choice;
   std::optional<StockSpec> stock; // empty: the bounding box of the cutting moves
   bool simulate_removal = true;   // false: no tools needed, cutting power is zero
   RemovalOptions removal;

@@ -338,6 +338,11 @@ struct InterpreterOptions : InterpreterLimits {
   std::optional<Dialect> dialect; // empty: detect from the text
   // Detection found nothing: this dialect (the machine's control) rather than linuxcnc.
   std::optional<Dialect> fallback_dialect;
+  // A later pass over a program (or a rewrite of it): the choice its first pass made, over
+  // `dialect`. Its origin counts as well as its dialect: a program nothing named is read as
+  // leniently again ("G28 Z", "M0 Turn ON spindle" warned of, not refused), where a dialect
+  // merely given would refuse the blocks the first pass ran.
+  std::optional<DialectChoice> same_choice_as_before;
   ToolTable tools;
   bool block_delete = false; // honour '/' (skip those blocks)
   bool optional_stop = true; // M1 stops (only recorded; time counts zero)

@@ -1,6 +1,6 @@
 // The pipeline: a first pass over the program for what must be known before anything is timed
-// (the tools it uses, the extent of its cuts), then the stream: interpret, plan, remove material,
-// integrate power, fold into per-line results.
+// (the tools it uses, the extent of its cuts), then the stream: replay the first pass's commands
+// (command_tape.hpp), plan, remove material, integrate power, fold into per-line results.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,6 +18,7 @@
 #endif
 
 #include "cam_stock.hpp"
+#include "command_tape.hpp"
 #include "long_arc_check.hpp"
 #include "machine_moves.hpp"
 #include "ncjoule/log.hpp"
@@ -55,6 +56,11 @@ void add_diagnostics(Estimate& e, std::vector<Diagnostic> more, const std::strin
     e.diagnostics.push_back(std::move(d));
   }
 }
+
+// The first pass's commands are held for the second within this many bytes a line of the
+// program (and this many bytes in all at least): a move takes about 20 bytes, an arc 45.
+constexpr std::size_t kTapeBytesPerLine = 64;
+constexpr std::size_t kTapeBytesLeast = std::size_t(4) << 20;
 
 // What the first pass learns.
 struct ProgramScan {
@@ -316,15 +322,21 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   // Without work offsets, Z home is placed above the highest point seen so far; the second pass
   // places it above the highest point of the whole program.
   estimate_detail::MachineMoves first_view(setup, offsets_given, std::nullopt, source.path);
+  // The commands as the interpreter gives them, for the second pass to replay.
+  estimate_detail::CommandTape tape(
+      options.replay_first_pass ? kTapeBytesPerLine * source.lines.size() + kTapeBytesLeast : 0);
   // The interpreter on a thread of its own, the scan here (stage_queue.hpp).
   InterpretResult run;
   estimate_detail::run_overlapped<CanonCommand>(
       options.overlap_stages,
       [&](estimate_detail::StageQueue<CanonCommand>& commands) {
         run = interpret(source, interpreter,
-                        [&](const CanonCommand& c) { commands.push(first_view.view(c)); });
+                        [&](const CanonCommand& c) { commands.push(CanonCommand(c)); });
       },
-      [&](const CanonCommand& c) { scan.add(c); });
+      [&](const CanonCommand& c) {
+        tape.record(c);
+        scan.add(first_view.view(c));
+      });
   const double home_z = first_view.home_z();
   e.dialect = run.dialect;
   e.dialect_origin = run.dialect_origin;
@@ -469,10 +481,12 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                                        estimate_detail::SetupIndex(scan.setup_firsts()),
                                        scan.setups.starts(), scan.commands, e);
   t = Clock::now();
-  // Interpret again, plan and fold as one stream: each command goes through as soon as the
-  // planner has timed it, so memory holds the look-ahead window, not the program. The three run
-  // at once, the interpreter and the planner each on a thread of its own and the folding
-  // (removal, energy) here, handing commands on in order (stage_queue.hpp).
+  // Replay the first pass's commands (or interpret again where the tape could not hold them),
+  // plan and fold as one stream: each command goes through as soon as the planner has timed it,
+  // so memory holds the look-ahead window, not the program's results. They run at once, the
+  // replay and the planner on a thread of its own (an interpreter on another where it reads the
+  // text again) and the folding (removal, energy) here, handing commands on in order
+  // (stage_queue.hpp).
   InterpreterOptions again = interpreter;
   again.same_choice_as_before = first_choice; // as the first pass chose it
   again.keep_diagnostics = false;             // the first pass gave them
@@ -494,13 +508,16 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
             timed.push({c, std::move(t)});
           });
           estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
-          estimate_detail::run_overlapped<CanonCommand>(
-              options.overlap_stages,
-              [&](estimate_detail::StageQueue<CanonCommand>& commands) {
-                interpret(source, again,
-                          [&](const CanonCommand& c) { commands.push(view.view(c)); });
-              },
-              [&](const CanonCommand& c) { planner.add(c); });
+          if (tape.complete())
+            tape.replay([&](const CanonCommand& c) { planner.add(view.view(c)); });
+          else
+            estimate_detail::run_overlapped<CanonCommand>(
+                options.overlap_stages,
+                [&](estimate_detail::StageQueue<CanonCommand>& commands) {
+                  interpret(source, again,
+                            [&](const CanonCommand& c) { commands.push(view.view(c)); });
+                },
+                [&](const CanonCommand& c) { planner.add(c); });
           total_s = planner.finish();
           planner_diagnostics = planner.take_diagnostics();
         },

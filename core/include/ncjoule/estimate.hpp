@@ -87,6 +87,11 @@ struct EstimateOptions {
   // on a thread of its own, handing commands on in order; false: one after the other on the
   // calling thread. The numbers are the same either way (tests compare the two).
   bool overlap_stages = true;
+  // The second pass replays the first pass's commands, held compactly (about 20 bytes a move, at
+  // most 64 bytes a line of the program), rather than interpreting the text again; a program
+  // whose commands need more (loops, calls) is interpreted again. false: always interpret again.
+  // The numbers are the same either way (tests compare the two).
+  bool replay_first_pass = true;
 };
 
 // A job file (TOML) says what a program is cut from and with:

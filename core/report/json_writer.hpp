@@ -4,8 +4,11 @@
 // shortest form that reads back to the same float); non-finite numbers are written as null.
 #pragma once
 
+#include <charconv>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <ostream>
@@ -34,6 +37,7 @@ public:
   void begin_array_of_lines();
   void end_array();
   // The key of the next value, inside an object: a name of plain ASCII, written unescaped.
+  // This and the numbers are defined below, inline: a large document writes millions of them.
   JsonWriter& key(std::string_view name);
   void value(double number);
   void value(float number);
@@ -101,5 +105,75 @@ private:
   int one_line_levels_ = 0; // open levels written on one line (newlines off inside them)
   bool after_key_ = false;
 };
+
+// Below this, a whole number's shortest form is its digits (to_chars writes 100000 as "1e+05",
+// shorter than its digits).
+inline constexpr double kWholeDigitsBelow = 100000;
+
+// Writes a whole number of magnitude below kWholeDigitsBelow as to_chars does ("-0" for
+// negative zero) at p; returns the end. Most numbers of an estimate's blocks are 0 (no removal,
+// no coolant, no tool change on most lines), and many are whole.
+inline char* put_whole(char* p, double number) {
+  if (std::signbit(number)) *p++ = '-';
+  return std::to_chars(p, p + 8, std::int64_t(std::fabs(number))).ptr;
+}
+
+inline void JsonWriter::before_value() {
+  if (after_key_) {
+    after_key_ = false;
+    return;
+  }
+  if (levels_.empty()) return;
+  Level& level = levels_.back();
+  if (!level.empty) put(',');
+  level.empty = false;
+  if (level.lines && one_line_levels_ == 0 && indent_ <= 0)
+    put('\n');
+  else if (indent_ > 0 && one_line_levels_ == 0)
+    newline();
+}
+
+inline JsonWriter& JsonWriter::key(std::string_view name) {
+  before_value();
+  // Keys are names the code chose (plain ASCII): written as they are, not scanned for escapes.
+  char* p = room(name.size() + 4);
+  *p++ = '"';
+  std::memcpy(p, name.data(), name.size());
+  p += name.size();
+  *p++ = '"';
+  *p++ = ':';
+  if (indent_ > 0 && one_line_levels_ == 0) *p++ = ' ';
+  used_ = std::size_t(p - buffer_.get());
+  after_key_ = true;
+  return *this;
+}
+
+inline void JsonWriter::value(double number) {
+  if (!std::isfinite(number)) return null();
+  before_value();
+  char* p = room(32);
+  if (std::fabs(number) < kWholeDigitsBelow && number == std::trunc(number))
+    p = put_whole(p, number);
+  else
+    p = std::to_chars(p, p + 32, number).ptr;
+  used_ = std::size_t(p - buffer_.get());
+}
+
+inline void JsonWriter::value(float number) {
+  if (!std::isfinite(number)) return null();
+  before_value();
+  char* p = room(32);
+  if (std::fabs(number) < float(kWholeDigitsBelow) && number == std::trunc(number))
+    p = put_whole(p, double(number));
+  else
+    p = std::to_chars(p, p + 32, number).ptr;
+  used_ = std::size_t(p - buffer_.get());
+}
+
+inline void JsonWriter::value(std::int64_t number) {
+  before_value();
+  char* p = room(32);
+  used_ = std::size_t(std::to_chars(p, p + 32, number).ptr - buffer_.get());
+}
 
 } // namespace ncjoule::report_detail

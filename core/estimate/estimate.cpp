@@ -482,11 +482,11 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                                        scan.setups.starts(), scan.commands, e);
   t = Clock::now();
   // Replay the first pass's commands (or interpret again where the tape could not hold them),
-  // plan and fold as one stream: each command goes through as soon as the planner has timed it,
-  // so memory holds the look-ahead window, not the program's results. They run at once, the
-  // replay and the planner on a thread of its own (an interpreter on another where it reads the
-  // text again) and the folding (removal, energy) here, handing commands on in order
-  // (stage_queue.hpp).
+  // plan, remove and fold as one stream: each command goes through as soon as the planner has
+  // timed it, so memory holds the look-ahead window, not the program's results. They run at
+  // once, handing commands on in order (stage_queue.hpp): the replay and the planner on a thread
+  // of its own (an interpreter on another where it reads the text again), removal on another, a
+  // batch at a time, and the folding (energy, the results) here.
   InterpreterOptions again = interpreter;
   again.same_choice_as_before = first_choice; // as the first pass chose it
   again.keep_diagnostics = false;             // the first pass gave them
@@ -501,32 +501,43 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   try {
     double total_s = 0;
     std::vector<Diagnostic> planner_diagnostics;
-    estimate_detail::run_overlapped<Timed>(
+    // Three stages after the replay: the planner, removal (a batch at a time), the folding.
+    estimate_detail::BatchRemoval removal(setup_removals,
+                                          estimate_detail::SetupIndex(scan.setup_firsts()));
+    using estimate_detail::RemovedBatch;
+    estimate_detail::run_overlapped<RemovedBatch>(
         options.overlap_stages,
-        [&](estimate_detail::StageQueue<Timed>& timed) {
-          Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& t) {
-            timed.push({c, std::move(t)});
-          });
-          estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
-          if (tape.complete())
-            tape.replay([&](const CanonCommand& c) { planner.add(view.view(c)); });
-          else
-            estimate_detail::run_overlapped<CanonCommand>(
-                options.overlap_stages,
-                [&](estimate_detail::StageQueue<CanonCommand>& commands) {
-                  interpret(source, again,
-                            [&](const CanonCommand& c) { commands.push(view.view(c)); });
-                },
-                [&](const CanonCommand& c) { planner.add(c); });
-          total_s = planner.finish();
-          planner_diagnostics = planner.take_diagnostics();
+        [&](estimate_detail::StageQueue<RemovedBatch>& removed) {
+          estimate_detail::run_overlapped<Timed>(
+              options.overlap_stages,
+              [&](estimate_detail::StageQueue<Timed>& timed) {
+                Planner planner(machine, plan_options, [&](const CanonCommand& c, TimedCommand& t) {
+                  timed.push({c, std::move(t)});
+                });
+                estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
+                if (tape.complete())
+                  tape.replay([&](const CanonCommand& c) { planner.add(view.view(c)); });
+                else
+                  estimate_detail::run_overlapped<CanonCommand>(
+                      options.overlap_stages,
+                      [&](estimate_detail::StageQueue<CanonCommand>& commands) {
+                        interpret(source, again,
+                                  [&](const CanonCommand& c) { commands.push(view.view(c)); });
+                      },
+                      [&](const CanonCommand& c) { planner.add(c); });
+                total_s = planner.finish();
+                planner_diagnostics = planner.take_diagnostics();
+              },
+              [&](Timed& t) {
+                work_budget.count(t.command, t.timed); // before removal cuts it
+                if (options.keep_commands) options.keep_commands->push_back(t.command);
+                if (auto batch = removal.take(t.command, std::move(t.timed)))
+                  removed.push(std::move(*batch));
+                ++streamed;
+              });
+          if (auto batch = removal.finish()) removed.push(std::move(*batch));
         },
-        [&](Timed& t) {
-          work_budget.count(t.command, t.timed); // before removal cuts it
-          if (options.keep_commands) options.keep_commands->push_back(t.command);
-          folder.take(t.command, std::move(t.timed));
-          ++streamed;
-        });
+        [&](RemovedBatch& batch) { folder.take(batch); }, 1, 4);
     add_diagnostics(e, std::move(planner_diagnostics), source.path);
     folder.finish(total_s);
   } catch (const BudgetExceeded& stopped) {

@@ -6,11 +6,6 @@
 namespace ncjoule::estimate_detail {
 namespace {
 
-// A batch goes to removal when it holds this many commands or path samples: big enough for the
-// removal tiles to run in parallel, small enough to stay in cache.
-constexpr std::size_t kBatchCommands = 2048;
-constexpr std::size_t kBatchSamples = 16384;
-
 // Whether a kind says more about a line than another: moves first, then what takes time.
 int kind_rank(LineKind kind) {
   switch (kind) {
@@ -54,47 +49,19 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
   if (setup_totals_.empty()) setup_totals_.push_back(SetupSummary{0, "the program's start"});
 }
 
-void ResultFolder::remove(std::size_t from, std::size_t to) {
-  // A batch may straddle a setup's start: each part goes to its own stock.
-  removed_.clear();
-  for (std::size_t k = from; k < to;) {
-    const std::size_t setup = setups_.of(next_index_ + k);
-    const std::size_t end = std::min(to, setups_.first(setup + 1) - next_index_);
-    moves_.clear();
-    for (std::size_t m = k; m < end; ++m)
-      moves_.push_back({next_index_ + m, &batch_commands_[m], &batch_timed_[m]});
-    std::vector<CommandRemoval> part;
-    removals_[std::min(setup, removals_.size() - 1)]->remove(moves_, part);
-    for (CommandRemoval& r : part)
-      removed_.push_back(std::move(r));
-    k = end;
-  }
-}
-
-void ResultFolder::take(const CanonCommand& command, TimedCommand&& timed) {
-  batch_commands_.push_back(command);
-  batch_samples_ += timed.samples.size();
-  batch_timed_.push_back(std::move(timed)); // its samples are not copied
-  if (batch_commands_.size() >= kBatchCommands || batch_samples_ >= kBatchSamples) run_batch();
-}
-
-void ResultFolder::run_batch() {
-  const std::size_t n = batch_commands_.size();
-  if (n == 0) return;
-  // A setup whose stock could not be made (no cuts to size it by) removes nothing.
-  const bool removal_known = std::any_of(removals_.begin(), removals_.end(),
-                                         [](const RemovalSimulator* r) { return r->ready(); });
-  if (removal_known) remove(0, n);
+void ResultFolder::take(const RemovedBatch& batch) {
+  const std::size_t n = batch.commands.size();
   for (std::size_t k = 0; k < n; ++k) {
-    const CanonCommand& command = batch_commands_[k];
-    const TimedCommand& timed = batch_timed_[k];
-    const CommandRemoval* removed = removal_known ? &removed_[k] : nullptr;
+    const std::size_t index = batch.first_index + k;
+    const CanonCommand& command = batch.commands[k];
+    const TimedCommand& timed = batch.timed[k];
+    const CommandRemoval* removed = batch.removal_known ? &batch.removed[k] : nullptr;
     segments_.clear();
     const CommandEnergy energy =
-        energy_.add(next_index_ + k, command, timed, removed, segments_, &out_.diagnostics);
+        energy_.add(index, command, timed, removed, segments_, &out_.diagnostics);
     const std::size_t operation = operations_.take(command, timed);
-    const std::size_t setup_index = setups_.of(next_index_ + k);
-    const bool guessed = removal_known && !guessed_setups_.empty() &&
+    const std::size_t setup_index = setups_.of(index);
+    const bool guessed = batch.removal_known && !guessed_setups_.empty() &&
                          guessed_setups_[std::min(setup_index, guessed_setups_.size() - 1)];
     fold(command, timed, removed, energy, operation, guessed);
     follow_guess(timed, removed, energy, guessed);
@@ -106,13 +73,10 @@ void ResultFolder::run_batch() {
     if (options_.keep_trace)
       out_.trace.insert(out_.trace.end(), segments_.begin(), segments_.end());
   }
-  next_index_ += n;
-  batch_commands_.clear();
-  batch_timed_.clear();
-  batch_samples_ = 0;
-  if (options_.progress && expected_commands_ > 0 && next_index_ - last_progress_ >= 4096) {
-    last_progress_ = next_index_;
-    options_.progress(0.1 + 0.9 * std::min(1.0, double(next_index_) / double(expected_commands_)));
+  const std::size_t folded = batch.first_index + n;
+  if (options_.progress && expected_commands_ > 0 && folded - last_progress_ >= 4096) {
+    last_progress_ = folded;
+    options_.progress(0.1 + 0.9 * std::min(1.0, double(folded) / double(expected_commands_)));
   }
 }
 
@@ -247,7 +211,6 @@ std::uint16_t ResultFolder::note_index(const std::string& note) {
 }
 
 void ResultFolder::finish(double total_s) {
-  run_batch();
   out_.time_s = total_s;
   out_.time = time_;
   out_.energy = energy_.totals(total_s);

@@ -1,14 +1,15 @@
-// Internal: the end of the pipeline. Timed commands come in, in the order they run; they are
-// gathered in small batches for material removal (removed a batch at a time, in parallel), then
-// their energy is integrated and everything is folded into the results that are kept: one
-// summary per source line, the operations, the time split, the power series and the reduced
-// toolpath. Nothing program-sized is kept but the per-line summaries.
+// Internal: the end of the pipeline. Batches of timed commands come in from removal
+// (batch_removal.hpp), in the order they run; their energy is integrated and everything is
+// folded into the results that are kept: one summary per source line, the operations, the time
+// split, the power series and the reduced toolpath. Nothing program-sized is kept but the
+// per-line summaries.
 #pragma once
 
 #include <map>
 #include <string>
 #include <vector>
 
+#include "batch_removal.hpp"
 #include "ncjoule/estimate.hpp"
 #include "operations.hpp"
 #include "series_reducer.hpp"
@@ -26,12 +27,12 @@ public:
                SetupIndex setups, const std::vector<SetupStart>& starts,
                std::size_t expected_commands, Estimate& out);
 
-  void take(const CanonCommand& command, TimedCommand&& timed);
-  // Folds what is left and fills the estimate's results; `total_s` is the program's time.
+  // Integrates the energy of a batch's commands and folds them in; batches come in order.
+  void take(const RemovedBatch& batch);
+  // Fills the estimate's results; `total_s` is the program's time.
   void finish(double total_s);
 
 private:
-  void run_batch();
   void fold(const CanonCommand& command, const TimedCommand& timed, const CommandRemoval* removed,
             const CommandEnergy& energy, std::size_t operation, bool stock_guessed);
   // What a command under a guessed stock adds to the range of the guessed figures.
@@ -46,8 +47,6 @@ private:
   const PowerConstants& power_constants_;
   const PowerEvaluator evaluate_power_; // of power_constants_
   const EstimateOptions& options_;
-  // Removes a batch's commands [from, to) with the setups' simulators.
-  void remove(std::size_t from, std::size_t to);
   // The setups' removal results as one: the program's.
   RemovalResult merged_removal() const;
 
@@ -57,12 +56,7 @@ private:
   Estimate& out_;
   std::size_t expected_commands_;
 
-  // The batch waiting for removal.
-  std::vector<CanonCommand> batch_commands_;
-  std::vector<TimedCommand> batch_timed_;
-  std::size_t batch_samples_ = 0;
-  std::size_t next_index_ = 0; // timeline index of the next command
-  std::size_t last_progress_ = 0;
+  std::size_t last_progress_ = 0; // commands folded at the last progress report
 
   // What is kept.
   std::vector<LineSummary> lines_; // one per source line while running
@@ -83,9 +77,7 @@ private:
   double worst_load_ = 0;
   int worst_load_line_ = -1;
 
-  // Scratch, reused batch after batch.
-  std::vector<TimedMove> moves_;
-  std::vector<CommandRemoval> removed_;
+  // Scratch, reused command after command.
   std::vector<OperatingSegment> segments_;
 };
 

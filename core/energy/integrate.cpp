@@ -2,6 +2,7 @@
 // trace, component by component, so the components add up to the total by construction.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "ncjoule/energy.hpp"
 
@@ -69,10 +70,17 @@ void EnergyIntegrator::correct_for_chip_thickness(const CanonCommand& command,
   const double per_tooth_mm = command.state.feed / (rpm * flutes->second);
   const auto diameter = options_.tool_diameters_mm.find(command.state.tool);
   const double d = diameter == options_.tool_diameters_mm.end() ? 0.0 : diameter->second;
+  // A segment's end is the next one's start, and a steady cut keeps its width: the factor is
+  // worked out again (an acos and a pow) only where the width changes.
+  double width = std::numeric_limits<double>::quiet_NaN(), factor = 0;
   for (OperatingSegment* seg = first; seg != last; ++seg)
     for (OperatingPoint* p : {&seg->start, &seg->end}) {
-      const double h = mean_chip_thickness_mm(per_tooth_mm, p->radial_width_mm, d);
-      p->cutting_factor = material->kc_at(h) / material->kc_j_mm3;
+      if (!(p->radial_width_mm == width)) {
+        width = p->radial_width_mm;
+        factor =
+            material->kc_at(mean_chip_thickness_mm(per_tooth_mm, width, d)) / material->kc_j_mm3;
+      }
+      p->cutting_factor = factor;
     }
 }
 

@@ -114,9 +114,11 @@ ComponentValues PowerEvaluator::operator()(const OperatingPoint& point) const {
     if (x == 0.0) continue;
     power[static_cast<std::size_t>(t.component)] += x * t.value;
   }
+  // n^0 is 1 for every n (the material's cutting term has no speed exponent): no pow.
   if (f.zhou_mrr_weight_w != 0.0 && f.zhou_rpm > 0.0)
     power[static_cast<std::size_t>(PowerComponent::Cutting)] +=
-        f.zhou_mrr_weight_w * zhou_c3_ * std::pow(f.zhou_rpm, zhou_c4_) * point.cutting_factor;
+        f.zhou_mrr_weight_w * zhou_c3_ * (zhou_c4_ == 0 ? 1.0 : std::pow(f.zhou_rpm, zhou_c4_)) *
+        point.cutting_factor;
   return power;
 }
 

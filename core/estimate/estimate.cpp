@@ -226,7 +226,9 @@ void check_holds_gcode(const InterpretResult& run, Estimate& e) {
 
 std::size_t estimated_program_memory(std::size_t bytes, std::size_t lines) {
   // Measured: 145 bytes a line for the estimate of a file of empty lines, 225 for annotating
-  // real programs (bench/scale.sh); the annotated copy is about four times the text.
+  // real programs (bench/scale.sh); the annotated copy is about four times the text. The first
+  // pass's command tape comes on top, freed as the second pass replays it: about 20 bytes a
+  // move, at most kTapeBytesPerLine a line (the 1M-block scale program: 12 MiB).
   constexpr double kPerLine = 240, kPerByte = 5;
   return std::size_t(std::min(kPerLine * double(lines) + kPerByte * double(bytes), 1e18));
 }

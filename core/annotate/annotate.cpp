@@ -8,14 +8,12 @@
 #include <optional>
 #include <vector>
 
-#include <tbb/parallel_pipeline.h>
-#include <tbb/task_arena.h>
-
 #include "annotation_form.hpp"
 #include "header.hpp"
 #include "line_layout.hpp"
 #include "marker.hpp"
 #include "ncjoule/annotate.hpp"
+#include "ncjoule/in_order.hpp"
 #include "number_format.hpp"
 #include "seal.hpp"
 #include "strip_line.hpp"
@@ -420,27 +418,12 @@ std::string annotate(const SourceFile& source, const Estimate& estimate,
     out += chunk.text;
   };
   constexpr std::size_t kChunkLines = 4096;
-  std::size_t first = 0;
-  tbb::parallel_pipeline(
-      2 * std::size_t(tbb::this_task_arena::max_concurrency()) + 1,
-      tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                          [&](tbb::flow_control& fc) -> std::size_t {
-                                            if (first >= n) {
-                                              fc.stop();
-                                              return 0;
-                                            }
-                                            const std::size_t at = first;
-                                            first += kChunkLines;
-                                            return at;
-                                          }) &
-          tbb::make_filter<std::size_t, std::shared_ptr<LineChunk>>(
-              tbb::filter_mode::parallel,
-              [&](std::size_t at) {
-                return write_lines(context, at, std::min(n, at + kChunkLines));
-              }) &
-          tbb::make_filter<std::shared_ptr<LineChunk>, void>(
-              tbb::filter_mode::serial_in_order,
-              [&](const std::shared_ptr<LineChunk>& chunk) { join(*chunk); }));
+  make_in_order<std::shared_ptr<LineChunk>>(
+      (n + kChunkLines - 1) / kChunkLines,
+      [&](std::size_t k) {
+        return write_lines(context, k * kChunkLines, std::min(n, (k + 1) * kChunkLines));
+      },
+      [&](const std::shared_ptr<LineChunk>& chunk) { join(*chunk); });
 
   if (header_at) {
     // The header: the summary, the keys, one line for each warning (which names its block's

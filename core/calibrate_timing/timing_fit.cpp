@@ -434,10 +434,10 @@ TimingFit fit_timing(const LogEvidence& evidence, const MachineProfile& base,
       double p = m[o];
       for (std::size_t k = 0; k < lin.size(); ++k)
         p += lin[k] * model.count(o, k);
-      residual_s[o] = p - observations[o].measured_s;
-      const double r = (p - observations[o].measured_s) / observations[o].sigma_s;
+      const double d = residual_s[o] = p - observations[o].measured_s;
+      const double r = d / observations[o].sigma_s;
       sse += r * r;
-      sse_s += (p - observations[o].measured_s) * (p - observations[o].measured_s);
+      sse_s += d * d;
     }
     fit.rms_after_s = std::sqrt(sse_s / double(n_obs));
     const double dof = n_obs > n_fitted ? double(n_obs - n_fitted) : 1.0;

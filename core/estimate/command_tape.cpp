@@ -174,7 +174,7 @@ void CommandTape::record(const CanonCommand& c) {
   last_ = c;
 }
 
-void CommandTape::replay(const std::function<void(const CanonCommand&)>& sink) {
+void CommandTape::replay(const std::function<void(const CanonCommand&)>& sink, bool release) {
   CanonCommand c; // the last command, which the next record changes
   for (Chunk& chunk : chunks_) {
     const unsigned char* p = chunk.data.get();
@@ -209,8 +209,9 @@ void CommandTape::replay(const std::function<void(const CanonCommand&)>& sink) {
       }
       sink(c);
     }
-    chunk.data.reset(); // read: freed
+    if (release) chunk.data.reset();
   }
+  if (!release) return;
   chunks_.clear();
   bytes_ = 0;
 }

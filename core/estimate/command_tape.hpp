@@ -33,9 +33,9 @@ public:
   std::size_t commands() const { return commands_; }
   std::size_t bytes() const { return bytes_; }
 
-  // Gives the recorded commands to `sink` in order, freeing the tape's memory as it goes: a
-  // tape is replayed once. Needs complete().
-  void replay(const std::function<void(const CanonCommand&)>& sink);
+  // Gives the recorded commands to `sink` in order. `release`: frees the tape's memory as it
+  // goes (the last replay); else the tape can be replayed again. Needs complete().
+  void replay(const std::function<void(const CanonCommand&)>& sink, bool release = true);
 
 private:
   // Memory in pieces of this size: the tape grows without copying and is freed as it is read.

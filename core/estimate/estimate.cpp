@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <functional>
 #ifdef _WIN32
 #define WIN32_LEAN_AND_MEAN
 #ifndef NOMINMAX
@@ -372,6 +373,23 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   logger().info("scan: {} blocks, {} commands in {:.3f} s", run.blocks, scan.commands,
                 seconds_since(t));
   if (options.progress) options.progress(0.1);
+  const estimate_detail::SetupIndex setup_index(scan.setup_firsts());
+
+  // The first pass's commands again, to `sink` in order: replayed from the tape where it holds
+  // them all (`last`: the tape is freed as it goes), else interpreted again as the first pass
+  // read them, the interpreter on a thread of its own.
+  InterpreterOptions again = interpreter;
+  again.same_choice_as_before = first_choice;
+  again.keep_diagnostics = false; // the first pass gave them
+  auto commands_again = [&](bool last, const std::function<void(const CanonCommand&)>& sink) {
+    if (tape.complete()) return tape.replay(sink, last);
+    estimate_detail::run_overlapped<CanonCommand>(
+        options.overlap_stages,
+        [&](estimate_detail::StageQueue<CanonCommand>& commands) {
+          interpret(source, again, [&](const CanonCommand& c) { commands.push(CanonCommand(c)); });
+        },
+        sink);
+  };
 
   // 2. Tools and stock.
   std::vector<Diagnostic> found;
@@ -418,16 +436,12 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
     removal_options.mirror_z = reads_z_mirrored(machine, scan.z_direction, e);
     removal_options.program_inch = e.inch;
     t = Clock::now();
-    const estimate_detail::SetupIndex setup_index(scan.setup_firsts());
     // The default stocks are sized from the moves as removal sees them.
     std::vector<StockExtent> mirrored(scan.extents.size());
     if (removal_options.mirror_z) {
-      InterpreterOptions again = interpreter;
-      again.same_choice_as_before = first_choice;
-      again.keep_diagnostics = false;
       estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
       std::size_t index = 0;
-      interpret(source, again, [&](const CanonCommand& c) {
+      commands_again(false, [&](const CanonCommand& c) {
         mirrored[setup_index.of(index++)].add(mirrored_z(view.view(c)));
       });
     }
@@ -480,8 +494,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   for (const auto& removal : removals)
     setup_removals.push_back(removal.get());
   estimate_detail::ResultFolder folder(source, e.dialect, e.power, folding, setup_removals,
-                                       estimate_detail::SetupIndex(scan.setup_firsts()),
-                                       scan.setups.starts(), scan.commands, e);
+                                       setup_index, scan.setups.starts(), scan.commands, e);
   t = Clock::now();
   // Replay the first pass's commands (or interpret again where the tape could not hold them),
   // plan, remove and fold as one stream: each command goes through as soon as the planner has
@@ -489,9 +502,6 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   // once, handing commands on in order (stage_queue.hpp): the replay and the planner on a thread
   // of its own (an interpreter on another where it reads the text again), removal on another, a
   // batch at a time, and the folding (energy, the results) here.
-  InterpreterOptions again = interpreter;
-  again.same_choice_as_before = first_choice; // as the first pass chose it
-  again.keep_diagnostics = false;             // the first pass gave them
   std::size_t streamed = 0;
   estimate_detail::WorkBudget work_budget(options.max_path_samples,
                                           options.simulate_removal ? options.max_removal_work : 0,
@@ -504,8 +514,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
     double total_s = 0;
     std::vector<Diagnostic> planner_diagnostics;
     // Three stages after the replay: the planner, removal (a batch at a time), the folding.
-    estimate_detail::BatchRemoval removal(setup_removals,
-                                          estimate_detail::SetupIndex(scan.setup_firsts()));
+    estimate_detail::BatchRemoval removal(setup_removals, setup_index);
     using estimate_detail::RemovedBatch;
     estimate_detail::run_overlapped<RemovedBatch>(
         options.overlap_stages,
@@ -517,16 +526,7 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                   timed.push({c, std::move(t)});
                 });
                 estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
-                if (tape.complete())
-                  tape.replay([&](const CanonCommand& c) { planner.add(view.view(c)); });
-                else
-                  estimate_detail::run_overlapped<CanonCommand>(
-                      options.overlap_stages,
-                      [&](estimate_detail::StageQueue<CanonCommand>& commands) {
-                        interpret(source, again,
-                                  [&](const CanonCommand& c) { commands.push(view.view(c)); });
-                      },
-                      [&](const CanonCommand& c) { planner.add(c); });
+                commands_again(true, [&](const CanonCommand& c) { planner.add(view.view(c)); });
                 total_s = planner.finish();
                 planner_diagnostics = planner.take_diagnostics();
               },

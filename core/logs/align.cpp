@@ -294,15 +294,14 @@ std::vector<RunAlignment> align_runs(const std::vector<LogRun>& runs,
     a.marks.push_back({run.start_s, 1});
     for (const TimedValue& m : r.marks)
       if (m.value != a.marks.back().value) a.marks.push_back(m);
-    if (!named && fitting.size() > 1)
+    if (!named && fitting.size() > 1) {
       for (const auto& f : fitting)
         a.alike.push_back(f.first);
-    if (!named && fitting.size() > 1)
       a.notes.push_back("its lines fit " + std::to_string(fitting.size()) +
                         " of the programs given alike" +
                         (run.program.empty() ? "" : " and the log names " + run.program) +
                         ": taken as " + p.name);
-    else if (!named && !run.program.empty())
+    } else if (!named && !run.program.empty())
       a.notes.push_back("the log names " + run.program + "; its lines are " + p.name + "'s");
     judge(run, p, r, a, options);
     out.push_back(std::move(a));

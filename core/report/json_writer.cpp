@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <tbb/parallel_pipeline.h>
-#include <tbb/task_arena.h>
+
+#include "ncjoule/in_order.hpp"
 
 namespace ncjoule::report_detail {
 
@@ -123,27 +123,18 @@ void JsonWriter::elements(std::size_t count,
   const std::size_t pieces = (count + kPiece - 1) / kPiece;
   const bool was_empty = levels_.back().empty;
   flush(); // the pieces' text follows what is written so far
-  std::size_t next = 0;
-  const auto live = std::size_t(2 * tbb::this_task_arena::max_concurrency());
-  tbb::parallel_pipeline(
-      live, tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
-                                                [&](tbb::flow_control& control) -> std::size_t {
-                                                  if (next == pieces) control.stop();
-                                                  return next++;
-                                                }) &
-                tbb::make_filter<std::size_t, std::string>(
-                    tbb::filter_mode::parallel,
-                    [&](std::size_t piece) {
-                      std::string text;
-                      JsonWriter w(text, *this, was_empty && piece == 0);
-                      const std::size_t end = std::min(count, (piece + 1) * kPiece);
-                      for (std::size_t i = piece * kPiece; i < end; ++i)
-                        element(w, i);
-                      w.flush();
-                      return text;
-                    }) &
-                tbb::make_filter<std::string, void>(tbb::filter_mode::serial_in_order,
-                                                    [&](const std::string& text) { put(text); }));
+  make_in_order<std::string>(
+      pieces,
+      [&](std::size_t piece) {
+        std::string text;
+        JsonWriter w(text, *this, was_empty && piece == 0);
+        const std::size_t end = std::min(count, (piece + 1) * kPiece);
+        for (std::size_t i = piece * kPiece; i < end; ++i)
+          element(w, i);
+        w.flush();
+        return text;
+      },
+      [&](const std::string& text) { put(text); });
   if (count > 0) levels_.back().empty = false;
 }
 

@@ -39,21 +39,27 @@ bool same_command(const CanonCommand& a, const CanonCommand& b) {
          same_bits(s.path_tolerance, t.path_tolerance) && s.plane == t.plane;
 }
 
-// Records `commands`, replays them, and says how many came back different (or missing).
-std::size_t replay_differences(const std::vector<CanonCommand>& commands,
-                               std::size_t max_bytes = std::size_t(1) << 30) {
-  CommandTape tape(max_bytes);
+// Records `commands`, replays them twice (kept, then freed), and says how many came back
+// different (or missing) over both.
+std::size_t replay_differences(const std::vector<CanonCommand>& commands) {
+  CommandTape tape(std::size_t(1) << 30);
   for (const CanonCommand& c : commands)
     tape.record(c);
   REQUIRE(tape.complete());
   CHECK(tape.commands() == commands.size());
-  std::size_t i = 0, differ = 0;
-  tape.replay([&](const CanonCommand& c) {
-    if (i >= commands.size() || !same_command(c, commands[i])) ++differ;
-    ++i;
-  });
-  CHECK(tape.bytes() == 0); // freed as it was read
-  return differ + (i > commands.size() ? i - commands.size() : commands.size() - i);
+  std::size_t differ = 0;
+  for (const bool release : {false, true}) {
+    std::size_t i = 0;
+    tape.replay(
+        [&](const CanonCommand& c) {
+          if (i >= commands.size() || !same_command(c, commands[i])) ++differ;
+          ++i;
+        },
+        release);
+    differ += i > commands.size() ? i - commands.size() : commands.size() - i;
+    CHECK((tape.bytes() == 0) == release); // freed as it was read the last time
+  }
+  return differ;
 }
 
 std::string read_sample(const std::string& name) {
@@ -77,6 +83,11 @@ const char* kMixedProgram = "%\n"
                             "G81 X40 Y40 Z-5 R2 F200\nG80\nG53 G0 Z0\nG20\nG1 X2 Y2 F10\n"
                             "G21\nM9\nM5\nM30\n"
                             "o100 sub\nG91 G1 X1 Y1\nG90\no100 endsub\n%\n";
+
+// Two passes of a 6 mm slot, for a machine whose +Z points into the work (Z negated).
+const char* kZDownProgram = "G21 G90 G17\n(T1 D=6. CR=0. - ZMIN=-3. - FLAT END MILL)\nT1 M6\n"
+                            "S8000 M3\nG0 Z-5\nG0 X-10 Y0\nG1 Z1.5 F100\nG1 X60 F600\nG0 Z-5\n"
+                            "G0 X-10\nG1 Z3 F100\nG1 X60 F600\nG0 Z-5\nM5\nM30\n";
 
 } // namespace
 
@@ -151,9 +162,13 @@ TEST_CASE("an estimate that replays the first pass gives the numbers of one that
   const MachineProfile machine = generic();
   for (const char* name :
        {"programs/bracket-linuxcnc.ngc", "programs/pavanaskar-pocket-spiral-in.ngc",
-        "freecad/fanuc.nc", "freecad/grbl.nc", "mixed"}) {
+        "freecad/fanuc.nc", "freecad/grbl.nc", "mixed", "z-down"}) {
     CAPTURE(std::string(name));
-    const std::string text = std::string(name) == "mixed" ? kMixedProgram : read_sample(name);
+    // z-down: posted for a machine whose +Z points into the work; the estimate goes over its
+    // commands a third time to size the stock as removal sees them (mirrored).
+    const std::string text = std::string(name) == "mixed"    ? kMixedProgram
+                             : std::string(name) == "z-down" ? kZDownProgram
+                                                             : read_sample(name);
     const SourceFile source = make_source(name, text);
     EstimateOptions replayed, read_again;
     read_again.replay_first_pass = false;
@@ -161,6 +176,11 @@ TEST_CASE("an estimate that replays the first pass gives the numbers of one that
     const Estimate b = estimate_program(source, machine, read_again);
     REQUIRE_FALSE(a.failed);
     CHECK(a.time_s > 0);
+    if (std::string(name) == "z-down") {
+      REQUIRE(a.removal);
+      CHECK(a.removal->stock_description.find("Z mirrored") != std::string::npos);
+      CHECK(a.energy.removed_mm3 > 100);
+    }
     CHECK(estimate_json(a, machine) == estimate_json(b, machine));
   }
 }

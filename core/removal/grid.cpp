@@ -82,16 +82,17 @@ constexpr double kSmallJobColumns = 1e6;
 
 } // namespace
 
-double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools) {
+double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
+                             double top_z) {
   // Each tool's cuts, weighted by the share of the removal they make (the area they sweep: their
-  // length times the diameter): the spacing that keeps the sum of their edge errors within the
-  // target.
+  // length in the stock times the diameter): the spacing that keeps the sum of their edge errors
+  // within the target. A face mill's pass over the air above the stock has no edge to lose.
   double weight = 0, per_diameter = 0, smallest = 0;
   for (const auto& [number, tool] : tools) {
     if (!(tool.diameter_mm > 0)) continue;
     const double d = tool.diameter_mm;
     smallest = smallest > 0 ? std::min(smallest, d) : d;
-    const double w = extent.cutting_length(number) * d;
+    const double w = extent.cutting_length_below(number, top_z) * d;
     weight += w;
     per_diameter += w / d;
   }
@@ -103,8 +104,8 @@ double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool
 }
 
 double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
-                              double work_columns, double stock_area_mm2) {
-  const double accurate = accuracy_grid_spacing(extent, tools);
+                              double work_columns, double stock_area_mm2, double top_z) {
+  const double accurate = accuracy_grid_spacing(extent, tools, top_z);
   // Coarser than a twentieth of the diameter, single cuts lose more than half a percent of their
   // volume (docs/removal.md).
   const double coarse = std::max(accurate, coarsest_grid_spacing(tools));

@@ -239,7 +239,8 @@ RemovalSimulator::RemovalSimulator(const StockSpec& spec, const StockExtent& ext
       options.grid_mm > 0
           ? options.grid_mm
           : automatic_grid_spacing(extent, tools_, options.work_columns,
-                                   (bounds.xmax - bounds.xmin) * (bounds.ymax - bounds.ymin));
+                                   (bounds.xmax - bounds.xmin) * (bounds.ymax - bounds.ymin),
+                                   bounds.zmax);
   // Far too fine a grid is refused before its frame is even made: its cell count would overflow.
   const double width = std::max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin);
   if (!(spacing > 0) || !std::isfinite(spacing) || width / spacing > 1e8) {

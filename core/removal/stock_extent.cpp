@@ -335,6 +335,20 @@ double StockExtent::cutting_length(int number) const {
   return it == tools_.end() ? 0.0 : it->second.length;
 }
 
+double StockExtent::cutting_length_below(int number, double top_z) const {
+  if (holds_hops()) return settled().cutting_length_below(number, top_z);
+  const auto it = tools_.find(number);
+  if (it == tools_.end()) return 0.0;
+  double air = 0;
+  auto add_air = [&](const LevelLengths& lengths) {
+    for (const auto& [z, length] : lengths.at)
+      if (z >= top_z - kZ0ToleranceMm) air += length;
+  };
+  for (const Level& l : it->second.levels)
+    add_air(l.length_before), add_air(l.length_after);
+  return std::max(0.0, it->second.length - air);
+}
+
 std::optional<Box3> default_stock_box(const std::vector<CanonCommand>& commands,
                                       const Timeline& timeline, const std::map<int, Tool>& tools) {
   StockExtent extent;

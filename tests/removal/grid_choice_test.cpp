@@ -72,6 +72,30 @@ TEST_CASE(
   CHECK(accuracy_grid_spacing(extent, face) == doctest::Approx(3.0 / 8));
 }
 
+TEST_CASE("a face mill's pass through the air over the stock does not make the grid coarser") {
+  // A 100 mm face mill crosses the part at Z0, then a 12 mm end mill cuts a slot 5 mm deep (as a
+  // posted program that faces a stock already flat at its top, Z0).
+  const std::map<int, Tool> tools{{1, flat_end_mill(1, 100)}, {2, flat_end_mill(2, 12)}};
+  ProgramBuilder p;
+  p.tool(1).feed_rate(400).rapid(-60, 40, 5).feed(-60, 40, 0).feed(160, 40, 0).rapid(160, 40, 5);
+  p.tool(2).rapid(0, 0, 5).feed(0, 0, -5).feed(100, 0, -5).rapid(100, 0, 5);
+  const StockExtent extent = extent_of(p);
+  REQUIRE(extent.cutting_length(1) == doctest::Approx(225)); // 220 across and the 5 mm plunge
+  // Over a stock whose top is Z0 the face mill's pass cuts nothing: its plunge alone is weighed.
+  CHECK(extent.cutting_length_below(1, 0) == doctest::Approx(5));
+  CHECK(extent.cutting_length_below(2, 0) == doctest::Approx(extent.cutting_length(2)));
+  const double l2 = extent.cutting_length(2);
+  CHECK(accuracy_grid_spacing(extent, tools, 0) ==
+        doctest::Approx(0.001 / 0.1 * (5 * 100 + l2 * 12) / (5 + l2)));
+  // With its top half a millimetre higher the pass cuts a layer, and its 220 mm count.
+  CHECK(extent.cutting_length_below(1, 0.5) == doctest::Approx(225));
+  CHECK(accuracy_grid_spacing(extent, tools, 0.5) ==
+        doctest::Approx(0.001 / 0.1 * (225 * 100 + l2 * 12) / (225 + l2)));
+  CHECK(accuracy_grid_spacing(extent, tools, 0.5) > 1.5 * accuracy_grid_spacing(extent, tools, 0));
+  // Without a top every cutting move counts, as before the stock is known.
+  CHECK(accuracy_grid_spacing(extent, tools) == accuracy_grid_spacing(extent, tools, 0.5));
+}
+
 TEST_CASE("the grid does not follow the memory budget, and the removed volume stays within 0.2%") {
   const double R = 3, depth = 4, L = 50;
   const std::map<int, Tool> tools{{1, flat_end_mill(1, 2 * R)}};

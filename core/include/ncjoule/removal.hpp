@@ -229,6 +229,10 @@ public:
   std::vector<double> cutting_levels() const;
   // Length of the cutting moves of tool `number` (mm).
   double cutting_length(int number) const;
+  // The same less its level moves at or above `top_z` (to kZ0ToleranceMm): passes through the
+  // air over a stock whose top is there (a facing pass at Z0 over a stock whose top is Z0)
+  // remove nothing. Plunges, ramps and 3D moves all count.
+  double cutting_length_below(int number, double top_z) const;
   // Feed moves box() took for positioning, not cutting (see default_stock_box), over all tools.
   std::size_t positioning_moves() const;
 
@@ -505,18 +509,22 @@ inline constexpr std::size_t kDefaultRemovalMemoryBudget = std::size_t(1) << 30;
 double default_grid_spacing(const std::map<int, Tool>& tools);
 // The grid the figures need: the spacing at which the volume removed gains or loses about 0.1%
 // along the cuts' edges (an edge error of about 0.06 x spacing / diameter per cut,
-// docs/removal.md), each tool weighted by the area it sweeps (its cutting length times its
-// diameter). Never finer than default_grid_spacing, nor coarser than a twentieth of the largest
-// tool (at most 2 mm). It follows the job alone: not the memory of the machine it runs on.
-double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools);
+// docs/removal.md), each tool weighted by the area it sweeps (its cutting length below the
+// stock's top `top_z` times its diameter). Never finer than default_grid_spacing, nor coarser
+// than a twentieth of the largest tool (at most 2 mm). It follows the job alone: not the memory
+// of the machine it runs on.
+double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
+                             double top_z = std::numeric_limits<double>::infinity());
 // The grid removal uses when none is given: accuracy_grid_spacing, coarsened (up to a twentieth
 // of the largest tool diameter, 2 mm at most) while the work (steps times the columns each
 // covers, estimated from the cutting length of each tool) would exceed `work_columns`; the
 // simulator then caps it by RemovalOptions::max_columns and the memory budget, with a note. A
 // small job (given `stock_area_mm2`, the stock's XY area: at most 1M columns at
-// default_grid_spacing, and a quarter of the work) keeps default_grid_spacing.
+// default_grid_spacing, and a quarter of the work) keeps default_grid_spacing. `top_z`: the
+// stock's top, for accuracy_grid_spacing.
 double automatic_grid_spacing(const StockExtent& extent, const std::map<int, Tool>& tools,
-                              double work_columns = 1.5e8, double stock_area_mm2 = 0);
+                              double work_columns = 1.5e8, double stock_area_mm2 = 0,
+                              double top_z = std::numeric_limits<double>::infinity());
 // The max_sample_step_mm to ask the planner for: steps as long as the grid spacing, or a quarter
 // of the smallest tool radius if that is longer, at most 1 mm. A step's sweep is exact along
 // it, so the step length sets only how finely MRR is resolved along a move (and the chords of

@@ -60,6 +60,7 @@ SweptStep::SweptStep(const Tool& tool, const Point3& from, const Point3& to)
   }
   if (tool.shape == ToolShape::Drill || tool.shape == ToolShape::Chamfer)
     tan_half_ = tool.tan_half_tip_angle();
+  if (tool.shape == ToolShape::Chamfer) tip_radius_ = tool.tip_diameter_mm / 2;
   xmin_ = std::min(from.x(), to.x()) - reach_, xmax_ = std::max(from.x(), to.x()) + reach_;
   ymin_ = std::min(from.y(), to.y()) - reach_, ymax_ = std::max(from.y(), to.y()) + reach_;
 }
@@ -72,8 +73,9 @@ double SweptStep::profile_height(double r) const {
   case ToolShape::BallEndMill:
     return radius_ - std::sqrt(std::max(0.0, radius_ * radius_ - r * r));
   case ToolShape::BullNose:
-  case ToolShape::Chamfer:
     return tool_.envelope_height(r);
+  case ToolShape::Chamfer: // Tool::envelope_height's cone, with the tangent worked out once
+    return r <= tip_radius_ ? 0 : (r - tip_radius_) / tan_half_;
   case ToolShape::Drill:
     return r / tan_half_;
   }
@@ -119,8 +121,22 @@ double SweptStep::lowest_bottom(double x, double y, bool shank) const {
     const double u = m * std::abs(perp) / std::sqrt(1 - m * m);
     return bottom(std::clamp(u, ul, uh));
   }
+  case ToolShape::Chamfer: {
+    // Flat over the tip's radius (the bottom is linear in u there), a cone beyond it: the
+    // minimum is at an end, at a kink where the cone begins, or at the cone's stationary point
+    // (as the drill's). Each is a point of the step, so the least of them is the minimum.
+    double lowest = std::min(bottom(ul), bottom(uh));
+    if (p2 < tip_radius_ * tip_radius_) {
+      const double w = std::sqrt(tip_radius_ * tip_radius_ - p2);
+      lowest = std::min({lowest, bottom(std::clamp(-w, ul, uh)), bottom(std::clamp(w, ul, uh))});
+    }
+    const double m = -slope_ * tan_half_;
+    if (std::abs(m) < 1)
+      lowest =
+          std::min(lowest, bottom(std::clamp(m * std::abs(perp) / std::sqrt(1 - m * m), ul, uh)));
+    return lowest;
+  }
   case ToolShape::BullNose:
-  case ToolShape::Chamfer:
     return convex_min(bottom, ul, uh);
   }
   return kInf;

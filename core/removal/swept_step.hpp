@@ -60,6 +60,7 @@ private:
   double shank_height_ = 0; // height of the shank's bottom above the tip
   double reach_;            // widest radius that can touch
   double tan_half_ = 0;     // drill and chamfer: tan(half tip angle)
+  double tip_radius_ = 0;   // chamfer: radius of the flat at its tip
   double zlow_;             // lowest tip Z of the step
   double xmin_, xmax_, ymin_, ymax_;
 };

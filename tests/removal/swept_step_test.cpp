@@ -1,0 +1,76 @@
+// The lowest tool bottom over a straight step (SweptStep::envelope_at) against a brute-force
+// walk along the step: the closed forms must find the true minimum, never a point above it.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "fixture.hpp"
+#include "swept_step.hpp"
+
+using namespace ncjoule;
+using namespace ncjoule::test;
+
+namespace {
+
+// The least tool bottom in the column through (x, y) over `samples` tip positions of the step
+// from `a` to `b`, with the tool's own envelope: an upper bound of the true minimum, within the
+// profile's slope times the spacing of the samples.
+double walked_minimum(const Tool& tool, const Point3& a, const Point3& b, double x, double y,
+                      int samples) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= samples; ++k) {
+    const double t = double(k) / samples;
+    const double tx = a.x() + t * (b.x() - a.x()), ty = a.y() + t * (b.y() - a.y());
+    const double r = std::sqrt((x - tx) * (x - tx) + (y - ty) * (y - ty));
+    if (r > tool.radius()) continue;
+    lowest = std::min(lowest, a.z() + t * (b.z() - a.z()) + tool.envelope_height(r));
+  }
+  return lowest;
+}
+
+} // namespace
+
+TEST_CASE("a V-bit's lowest bottom along ramps is the true minimum, tip flat or pointed") {
+  std::mt19937 random(43);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int columns = 0, interior = 0;
+  for (const double tip : {0.0, 0.8})
+    for (const double angle : {30.0, 60.0, 90.0, 120.0}) {
+      Tool vbit = flat_end_mill(1, 6);
+      vbit.shape = ToolShape::Chamfer;
+      vbit.tip_angle_deg = angle;
+      vbit.tip_diameter_mm = tip;
+      for (int step = 0; step < 40; ++step) {
+        // Ramps down and up, from nearly level to steeper than the cone's flank.
+        const double length = 1 + 9 * unit(random), heading = 6.283 * unit(random);
+        const double rise = (unit(random) - 0.5) * length * (step % 4 == 0 ? 4.0 : 0.6);
+        const Point3 a(0, 0, 0), b(length * std::cos(heading), length * std::sin(heading), rise);
+        const detail::SweptStep swept(vbit, a, b);
+        for (int c = 0; c < 25; ++c) {
+          const double t = -0.3 + 1.6 * unit(random), off = (unit(random) - 0.5) * 6.4;
+          const double x = t * b.x() - off * std::sin(heading);
+          const double y = t * b.y() + off * std::cos(heading);
+          const double exact = swept.envelope_at(x, y);
+          const double walked = walked_minimum(vbit, a, b, x, y, 20000);
+          if (!std::isfinite(walked)) continue;
+          CAPTURE(tip);
+          CAPTURE(angle);
+          CAPTURE(step);
+          CAPTURE(x);
+          CAPTURE(y);
+          REQUIRE(std::isfinite(exact));
+          CHECK(exact <= walked + 1e-12);
+          CHECK(walked - exact < 5e-3);
+          ++columns;
+          // The minimum inside the step, not at an end: what the closed form has to find.
+          const double ends =
+              std::min(walked_minimum(vbit, a, a, x, y, 1), walked_minimum(vbit, b, b, x, y, 1));
+          if (exact < ends - 1e-6) ++interior;
+        }
+      }
+    }
+  CHECK(columns > 2000);
+  CHECK(interior > 200);
+}

@@ -6,6 +6,7 @@
 #include <limits>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "engines.hpp"
 #include "swept_step.hpp"
@@ -241,10 +242,24 @@ private:
     // Tiles in parallel by rows of tiles: a step's footprint usually spans several tiles of a
     // row, and the columns a step covers on a row of the grid (SweptStep::row_span, the kernel's
     // largest cost) are the same in each, so one task works them out once for its row of tiles.
-    std::vector<std::size_t> row_starts; // where each row of tiles begins in `touched`
+    // A batch in few rows of tiles (a raster along X: each batch's steps lie along one or two
+    // rows) splits its rows into runs of tiles, so that every core has work; each tile is still
+    // cut by one task, its steps in order, so the numbers do not depend on the split.
+    std::vector<std::size_t> row_starts; // where each task's tiles begin in `touched`
     for (std::size_t t = 0; t < touched.size(); ++t)
       if (t == 0 || touched[t] / std::size_t(across) != touched[t - 1] / std::size_t(across))
         row_starts.push_back(t);
+    const std::size_t tasks_wanted = 4 * std::size_t(tbb::this_task_arena::max_concurrency());
+    if (row_starts.size() < tasks_wanted && touched.size() > row_starts.size()) {
+      const std::size_t per_task = (touched.size() + tasks_wanted - 1) / tasks_wanted;
+      std::vector<std::size_t> split;
+      for (std::size_t r = 0; r < row_starts.size(); ++r) {
+        const std::size_t last = r + 1 < row_starts.size() ? row_starts[r + 1] : touched.size();
+        for (std::size_t t = row_starts[r]; t < last; t += per_task)
+          split.push_back(t);
+      }
+      row_starts.swap(split);
+    }
     row_starts.push_back(touched.size());
     auto run_row = [&](std::size_t first, std::size_t last) {
       RowSpans spans(begin, end);

@@ -51,6 +51,7 @@ SweptStep::SweptStep(const Tool& tool, const Point3& from, const Point3& to)
   if (len_ > kMinXyLength) {
     ux_ = dx / len_, uy_ = dy / len_;
     slope_ = dz_ / len_;
+    slope_norm_ = std::sqrt(1 + slope_ * slope_);
   } else {
     len_ = 0;
   }
@@ -112,7 +113,7 @@ double SweptStep::lowest_bottom(double x, double y, bool shank) const {
   case ToolShape::FlatEndMill:
     return bottom(slope_ > 0 ? ul : uh);
   case ToolShape::BallEndMill: {
-    const double u = -slope_ * c / std::sqrt(1 + slope_ * slope_);
+    const double u = -slope_ * c / slope_norm_;
     return bottom(std::clamp(u, ul, uh));
   }
   case ToolShape::Drill: {

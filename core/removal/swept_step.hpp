@@ -55,6 +55,7 @@ private:
   double len_;              // XY length of the step
   double ux_ = 0, uy_ = 0;  // XY unit direction (0 when the step is vertical)
   double slope_ = 0;        // dz per mm of XY travel
+  double slope_norm_ = 1;   // sqrt(1 + slope^2): the ball's stationary point
   double radius_;           // cutter radius
   double shank_radius_ = 0; // > radius_ when a wider shank can touch the stock
   double shank_height_ = 0; // height of the shank's bottom above the tip

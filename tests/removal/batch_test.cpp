@@ -88,6 +88,37 @@ TEST_CASE("batched removal equals removal step by step, bit for bit, for any thr
   }
 }
 
+TEST_CASE("a raster in one row of tiles is split among the cores, with the same volumes") {
+  // A ball mill's raster along X, 0.2 mm apart in Y, stepping down as it goes: each batch's
+  // steps lie in one or two rows of tiles, which remove_steps splits into runs of tiles.
+  const Tool ball = ball_end_mill(1, 3);
+  std::vector<RemovalStep> steps;
+  for (int pass = 0; pass < 12; ++pass) {
+    const double y = 10 + 0.2 * pass, z = -0.3 - 0.05 * pass;
+    for (int k = 0; k < 200; ++k) {
+      const double x0 = pass % 2 ? 58 - 0.28 * k : 2 + 0.28 * k;
+      const double x1 = pass % 2 ? x0 - 0.28 : x0 + 0.28;
+      steps.push_back({&ball, {x0, y, z + 0.001 * k}, {x1, y, z + 0.001 * (k + 1)}});
+    }
+  }
+  const Box3 box{0, 0, -3, 60, 30, 0};
+  const auto stock = make_box_stock(box, "test box");
+  const GridFrame grid = make_grid(box, 0.05); // 1200 x 600 columns: 38 tiles along a row
+  const std::vector<double> reference = one_by_one(*stock, grid, steps);
+  for (int threads : {1, 2, 4})
+    for (std::size_t batch : {std::size_t(200), std::size_t(2400)}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      CAPTURE(threads);
+      CAPTURE(batch);
+      const std::vector<double> v = batched(*stock, grid, steps, batch);
+      REQUIRE(v.size() == reference.size());
+      bool identical = true;
+      for (std::size_t k = 0; k < v.size(); ++k)
+        identical = identical && v[k] == reference[k];
+      CHECK(identical);
+    }
+}
+
 TEST_CASE("a batch of a tool far wider than the grid runs in chunks, with the same volumes") {
   // A 40 mm cutter on a 0.06 mm grid: each step's footprint spans about 21 x 21 tiles, so the
   // 2,000 steps of one batch touch about 880,000 (step, tile) bins, more than one chunk of

@@ -7,6 +7,8 @@
 #                   skipped
 #       BLOCKS      size of the scale program (bench/make_scale_program.py), default 1000000
 #       RUNS        runs of each command, default 3; the best time of each counts
+#   CAMSIM=PATH and CAMOTICS_REPO=DIR (a clone of CAMotics) add the row against camsim
+#   (bench/camsim.py); camsim is found on PATH too.
 #
 # Each run times rs274 -g and every ncjoule command on the same program one after the other, so
 # that a machine busy with other work slows them alike; a ratio is of the best wall-clock times,
@@ -74,12 +76,16 @@ row "estimate --json-compact (x rs274's time)" "-" "$(ratio "${wall[compact]}" "
   "$(ratio "${cpu[compact]}" "${cpu[rs274]}")x" "${peak[compact]}"
 
 # --- removal against CAMotics' camsim -------------------------------------------------------
-if command -v camsim > /dev/null; then
-  echo "removal vs camsim (>= 10x at camsim's grid): not measured, camsim is installed but this" \
-    "script does not drive it yet"
+camsim="${CAMSIM:-$(command -v camsim || true)}"
+if [ -n "$camsim" ] && [ -n "${CAMOTICS_REPO:-}" ]; then
+  python3 "$root/bench/camsim.py" "$ncjoule" "$CAMOTICS_REPO" --camsim "$camsim" --runs "$runs" |
+    tail -1
+elif [ -n "$camsim" ]; then
+  echo "removal vs camsim (>= 10x at camsim's grid): not measured, give CAMOTICS_REPO (a clone" \
+    "of CauldronDevelopmentLLC/CAMotics, for its example projects)"
 else
   echo "removal vs camsim (>= 10x at camsim's grid): not measured, camsim is not installed" \
-    "(Debian has no camotics package)"
+    "(Debian has no camotics package; CAMSIM=PATH names a build of it)"
 fi
 
 [ -n "$corpus" ] || { echo "corpus rows: not measured (give the corpus folder)"; exit 0; }

@@ -78,7 +78,8 @@ row "estimate --json-compact (x rs274's time)" "-" "$(ratio "${wall[compact]}" "
 # --- removal against CAMotics' camsim -------------------------------------------------------
 camsim="${CAMSIM:-$(command -v camsim || true)}"
 if [ -n "$camsim" ] && [ -n "${CAMOTICS_REPO:-}" ]; then
-  python3 "$root/bench/camsim.py" "$ncjoule" "$CAMOTICS_REPO" --camsim "$camsim" --runs "$runs" |
+  python3 "$root/bench/camsim.py" "$ncjoule" "$CAMOTICS_REPO" --camsim "$camsim" --runs "$runs" \
+    2> /dev/null |
     tail -1
 elif [ -n "$camsim" ]; then
   echo "removal vs camsim (>= 10x at camsim's grid): not measured, give CAMOTICS_REPO (a clone" \

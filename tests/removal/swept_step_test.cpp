@@ -74,3 +74,42 @@ TEST_CASE("a V-bit's lowest bottom along ramps is the true minimum, tip flat or 
   CHECK(columns > 2000);
   CHECK(interior > 200);
 }
+
+TEST_CASE("a bull nose's lowest bottom along ramps is the true minimum") {
+  std::mt19937 random(44);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int columns = 0, interior = 0;
+  for (const double corner : {0.25, 1.0, 2.9, 3.0})
+    for (const double diameter : {6.0, 10.0}) {
+      Tool bull = flat_end_mill(1, diameter);
+      bull.shape = ToolShape::BullNose;
+      bull.corner_radius_mm = corner;
+      for (int step = 0; step < 40; ++step) {
+        const double length = 0.2 + 9.8 * unit(random), heading = 6.283 * unit(random);
+        const double rise = (unit(random) - 0.5) * length * (step % 4 == 0 ? 4.0 : 0.6);
+        const Point3 a(1, 2, -1),
+            b(1 + length * std::cos(heading), 2 + length * std::sin(heading), -1 + rise);
+        const detail::SweptStep swept(bull, a, b);
+        for (int c = 0; c < 25; ++c) {
+          const double t = -0.5 + 2 * unit(random), off = (unit(random) - 0.5) * 1.1 * diameter;
+          const double x = a.x() + t * (b.x() - a.x()) - off * std::sin(heading);
+          const double y = a.y() + t * (b.y() - a.y()) + off * std::cos(heading);
+          const double exact = swept.envelope_at(x, y);
+          const double walked = walked_minimum(bull, a, b, x, y, 20000);
+          if (!std::isfinite(walked)) continue;
+          CAPTURE(corner);
+          CAPTURE(diameter);
+          CAPTURE(step);
+          REQUIRE(std::isfinite(exact));
+          CHECK(exact <= walked + 1e-12);
+          CHECK(walked - exact < 5e-3);
+          ++columns;
+          const double ends =
+              std::min(walked_minimum(bull, a, a, x, y, 1), walked_minimum(bull, b, b, x, y, 1));
+          if (exact < ends - 1e-6) ++interior;
+        }
+      }
+    }
+  CHECK(columns > 2000);
+  CHECK(interior > 200);
+}

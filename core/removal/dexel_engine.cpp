@@ -228,9 +228,11 @@ private:
                     std::vector<double>* cut_tops) {
     const int across = tiles_across(grid_);
     std::vector<std::uint32_t> touched; // tiles with steps, in tile order
+    std::size_t footprints = 0, tiles_wide = 0;
     for (std::size_t k = begin; k < end; ++k) {
       const FootprintRange& f = ranges[k];
       if (f.empty()) continue;
+      ++footprints, tiles_wide += std::size_t(f.ti1 - f.ti0 + 1);
       for (int tj = f.tj0; tj <= f.tj1; ++tj)
         for (int ti = f.ti0; ti <= f.ti1; ++ti) {
           const std::size_t tile = std::size_t(tj) * std::size_t(across) + std::size_t(ti);
@@ -244,13 +246,17 @@ private:
     // largest cost) are the same in each, so one task works them out once for its row of tiles.
     // A batch in few rows of tiles (a raster along X: each batch's steps lie along one or two
     // rows) splits its rows into runs of tiles, so that every core has work; each tile is still
-    // cut by one task, its steps in order, so the numbers do not depend on the split.
+    // cut by one task, its steps in order, so the numbers do not depend on the split. Only where
+    // the steps are narrow (two tiles wide on average): a step in several runs has its rows'
+    // spans worked out in each, which costs more than it gains for a wide tool (a drill's
+    // plunge on a fine grid spans a dozen tiles).
     std::vector<std::size_t> row_starts; // where each task's tiles begin in `touched`
     for (std::size_t t = 0; t < touched.size(); ++t)
       if (t == 0 || touched[t] / std::size_t(across) != touched[t - 1] / std::size_t(across))
         row_starts.push_back(t);
     const std::size_t tasks_wanted = 4 * std::size_t(tbb::this_task_arena::max_concurrency());
-    if (row_starts.size() < tasks_wanted && touched.size() > row_starts.size()) {
+    if (row_starts.size() < tasks_wanted && touched.size() > row_starts.size() &&
+        tiles_wide <= 2 * footprints) {
       const std::size_t per_task = (touched.size() + tasks_wanted - 1) / tasks_wanted;
       std::vector<std::size_t> split;
       for (std::size_t r = 0; r < row_starts.size(); ++r) {

@@ -103,7 +103,8 @@ TEST_CASE("a raster in one row of tiles is split among the cores, with the same 
   }
   const Box3 box{0, 0, -3, 60, 30, 0};
   const auto stock = make_box_stock(box, "test box");
-  const GridFrame grid = make_grid(box, 0.05); // 1200 x 600 columns: 38 tiles along a row
+  // 400 x 200 columns, 13 tiles along a row; each step spans 22 columns, one or two tiles.
+  const GridFrame grid = make_grid(box, 0.15);
   const std::vector<double> reference = one_by_one(*stock, grid, steps);
   for (int threads : {1, 2, 4})
     for (std::size_t batch : {std::size_t(200), std::size_t(2400)}) {

@@ -92,7 +92,7 @@ double accuracy_grid_spacing(const StockExtent& extent, const std::map<int, Tool
     if (!(tool.diameter_mm > 0)) continue;
     const double d = tool.diameter_mm;
     smallest = smallest > 0 ? std::min(smallest, d) : d;
-    const double w = extent.cutting_length_below(number, top_z) * d;
+    const double w = extent.cutting_length(number, top_z) * d;
     weight += w;
     per_diameter += w / d;
   }

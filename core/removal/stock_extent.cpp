@@ -329,14 +329,8 @@ std::vector<double> StockExtent::cutting_levels() const {
   return levels;
 }
 
-double StockExtent::cutting_length(int number) const {
-  if (holds_hops()) return settled().cutting_length(number);
-  const auto it = tools_.find(number);
-  return it == tools_.end() ? 0.0 : it->second.length;
-}
-
-double StockExtent::cutting_length_below(int number, double top_z) const {
-  if (holds_hops()) return settled().cutting_length_below(number, top_z);
+double StockExtent::cutting_length(int number, double top_z) const {
+  if (holds_hops()) return settled().cutting_length(number, top_z);
   const auto it = tools_.find(number);
   if (it == tools_.end()) return 0.0;
   double air = 0;

@@ -82,13 +82,13 @@ TEST_CASE("a face mill's pass through the air over the stock does not make the g
   const StockExtent extent = extent_of(p);
   REQUIRE(extent.cutting_length(1) == doctest::Approx(225)); // 220 across and the 5 mm plunge
   // Over a stock whose top is Z0 the face mill's pass cuts nothing: its plunge alone is weighed.
-  CHECK(extent.cutting_length_below(1, 0) == doctest::Approx(5));
-  CHECK(extent.cutting_length_below(2, 0) == doctest::Approx(extent.cutting_length(2)));
+  CHECK(extent.cutting_length(1, 0) == doctest::Approx(5));
+  CHECK(extent.cutting_length(2, 0) == doctest::Approx(extent.cutting_length(2)));
   const double l2 = extent.cutting_length(2);
   CHECK(accuracy_grid_spacing(extent, tools, 0) ==
         doctest::Approx(0.001 / 0.1 * (5 * 100 + l2 * 12) / (5 + l2)));
   // With its top half a millimetre higher the pass cuts a layer, and its 220 mm count.
-  CHECK(extent.cutting_length_below(1, 0.5) == doctest::Approx(225));
+  CHECK(extent.cutting_length(1, 0.5) == doctest::Approx(225));
   CHECK(accuracy_grid_spacing(extent, tools, 0.5) ==
         doctest::Approx(0.001 / 0.1 * (225 * 100 + l2 * 12) / (225 + l2)));
   CHECK(accuracy_grid_spacing(extent, tools, 0.5) > 1.5 * accuracy_grid_spacing(extent, tools, 0));

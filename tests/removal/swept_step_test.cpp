@@ -30,86 +30,78 @@ double walked_minimum(const Tool& tool, const Point3& a, const Point3& b, double
   return lowest;
 }
 
+// Checks SweptStep::envelope_at against the walk on 40 random ramps of `tool`, down and up,
+// from nearly level to steeper than any flank, at 25 columns each around the step. Counts the
+// columns checked, and those whose minimum lies inside the step, not at an end (what a closed
+// form or a search has to find).
+struct WalkCount {
+  int columns = 0, interior = 0;
+};
+WalkCount check_ramps_against_walk(const Tool& tool, std::mt19937& random) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  WalkCount count;
+  const double d = tool.diameter_mm;
+  for (int step = 0; step < 40; ++step) {
+    const double length = 0.2 + 9.8 * unit(random), heading = 6.283 * unit(random);
+    const double rise = (unit(random) - 0.5) * length * (step % 4 == 0 ? 4.0 : 0.6);
+    const Point3 a(1, 2, -1),
+        b(1 + length * std::cos(heading), 2 + length * std::sin(heading), -1 + rise);
+    const detail::SweptStep swept(tool, a, b);
+    for (int c = 0; c < 25; ++c) {
+      const double t = -0.5 + 2 * unit(random), off = (unit(random) - 0.5) * 1.1 * d;
+      const double x = a.x() + t * (b.x() - a.x()) - off * std::sin(heading);
+      const double y = a.y() + t * (b.y() - a.y()) + off * std::cos(heading);
+      const double exact = swept.envelope_at(x, y);
+      const double walked = walked_minimum(tool, a, b, x, y, 20000);
+      if (!std::isfinite(walked)) continue;
+      CAPTURE(step);
+      CAPTURE(x);
+      CAPTURE(y);
+      REQUIRE(std::isfinite(exact));
+      CHECK(exact <= walked + 1e-12);
+      CHECK(walked - exact < 5e-3);
+      ++count.columns;
+      const double ends =
+          std::min(walked_minimum(tool, a, a, x, y, 1), walked_minimum(tool, b, b, x, y, 1));
+      if (exact < ends - 1e-6) ++count.interior;
+    }
+  }
+  return count;
+}
+
 } // namespace
 
 TEST_CASE("a V-bit's lowest bottom along ramps is the true minimum, tip flat or pointed") {
   std::mt19937 random(43);
-  std::uniform_real_distribution<double> unit(0, 1);
-  int columns = 0, interior = 0;
+  WalkCount total;
   for (const double tip : {0.0, 0.8})
     for (const double angle : {30.0, 60.0, 90.0, 120.0}) {
       Tool vbit = flat_end_mill(1, 6);
       vbit.shape = ToolShape::Chamfer;
       vbit.tip_angle_deg = angle;
       vbit.tip_diameter_mm = tip;
-      for (int step = 0; step < 40; ++step) {
-        // Ramps down and up, from nearly level to steeper than the cone's flank.
-        const double length = 1 + 9 * unit(random), heading = 6.283 * unit(random);
-        const double rise = (unit(random) - 0.5) * length * (step % 4 == 0 ? 4.0 : 0.6);
-        const Point3 a(0, 0, 0), b(length * std::cos(heading), length * std::sin(heading), rise);
-        const detail::SweptStep swept(vbit, a, b);
-        for (int c = 0; c < 25; ++c) {
-          const double t = -0.3 + 1.6 * unit(random), off = (unit(random) - 0.5) * 6.4;
-          const double x = t * b.x() - off * std::sin(heading);
-          const double y = t * b.y() + off * std::cos(heading);
-          const double exact = swept.envelope_at(x, y);
-          const double walked = walked_minimum(vbit, a, b, x, y, 20000);
-          if (!std::isfinite(walked)) continue;
-          CAPTURE(tip);
-          CAPTURE(angle);
-          CAPTURE(step);
-          CAPTURE(x);
-          CAPTURE(y);
-          REQUIRE(std::isfinite(exact));
-          CHECK(exact <= walked + 1e-12);
-          CHECK(walked - exact < 5e-3);
-          ++columns;
-          // The minimum inside the step, not at an end: what the closed form has to find.
-          const double ends =
-              std::min(walked_minimum(vbit, a, a, x, y, 1), walked_minimum(vbit, b, b, x, y, 1));
-          if (exact < ends - 1e-6) ++interior;
-        }
-      }
+      CAPTURE(tip);
+      CAPTURE(angle);
+      const WalkCount count = check_ramps_against_walk(vbit, random);
+      total.columns += count.columns, total.interior += count.interior;
     }
-  CHECK(columns > 2000);
-  CHECK(interior > 200);
+  CHECK(total.columns > 2000);
+  CHECK(total.interior > 200);
 }
 
 TEST_CASE("a bull nose's lowest bottom along ramps is the true minimum") {
   std::mt19937 random(44);
-  std::uniform_real_distribution<double> unit(0, 1);
-  int columns = 0, interior = 0;
+  WalkCount total;
   for (const double corner : {0.25, 1.0, 2.9, 3.0})
     for (const double diameter : {6.0, 10.0}) {
       Tool bull = flat_end_mill(1, diameter);
       bull.shape = ToolShape::BullNose;
       bull.corner_radius_mm = corner;
-      for (int step = 0; step < 40; ++step) {
-        const double length = 0.2 + 9.8 * unit(random), heading = 6.283 * unit(random);
-        const double rise = (unit(random) - 0.5) * length * (step % 4 == 0 ? 4.0 : 0.6);
-        const Point3 a(1, 2, -1),
-            b(1 + length * std::cos(heading), 2 + length * std::sin(heading), -1 + rise);
-        const detail::SweptStep swept(bull, a, b);
-        for (int c = 0; c < 25; ++c) {
-          const double t = -0.5 + 2 * unit(random), off = (unit(random) - 0.5) * 1.1 * diameter;
-          const double x = a.x() + t * (b.x() - a.x()) - off * std::sin(heading);
-          const double y = a.y() + t * (b.y() - a.y()) + off * std::cos(heading);
-          const double exact = swept.envelope_at(x, y);
-          const double walked = walked_minimum(bull, a, b, x, y, 20000);
-          if (!std::isfinite(walked)) continue;
-          CAPTURE(corner);
-          CAPTURE(diameter);
-          CAPTURE(step);
-          REQUIRE(std::isfinite(exact));
-          CHECK(exact <= walked + 1e-12);
-          CHECK(walked - exact < 5e-3);
-          ++columns;
-          const double ends =
-              std::min(walked_minimum(bull, a, a, x, y, 1), walked_minimum(bull, b, b, x, y, 1));
-          if (exact < ends - 1e-6) ++interior;
-        }
-      }
+      CAPTURE(corner);
+      CAPTURE(diameter);
+      const WalkCount count = check_ramps_against_walk(bull, random);
+      total.columns += count.columns, total.interior += count.interior;
     }
-  CHECK(columns > 2000);
-  CHECK(interior > 200);
+  CHECK(total.columns > 2000);
+  CHECK(total.interior > 200);
 }

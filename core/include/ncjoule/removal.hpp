@@ -227,12 +227,10 @@ public:
   // The Z levels the cutting moves start and end at (the voxel engine's layer boundaries), up
   // to a few thousand.
   std::vector<double> cutting_levels() const;
-  // Length of the cutting moves of tool `number` (mm).
-  double cutting_length(int number) const;
-  // The same less its level moves at or above `top_z` (to kZ0ToleranceMm): passes through the
-  // air over a stock whose top is there (a facing pass at Z0 over a stock whose top is Z0)
-  // remove nothing. Plunges, ramps and 3D moves all count.
-  double cutting_length_below(int number, double top_z) const;
+  // Length of the cutting moves of tool `number` (mm), less its level moves at or above `top_z`
+  // (to kZ0ToleranceMm): passes through the air over a stock whose top is there (a facing pass
+  // at Z0 over a stock whose top is Z0) remove nothing. Plunges, ramps and 3D moves all count.
+  double cutting_length(int number, double top_z = std::numeric_limits<double>::infinity()) const;
   // Feed moves box() took for positioning, not cutting (see default_stock_box), over all tools.
   std::size_t positioning_moves() const;
 

@@ -34,11 +34,9 @@ public:
       top_[c] = count_[c] ? intervals_[first_[c] + count_[c] - 1].hi : kNoMaterial;
     }
     tile_top_.assign(tile_count(grid_), kNoMaterial);
-    for (int j = 0; j < grid_.ny; ++j)
-      for (int i = 0; i < grid_.nx; ++i) {
-        double& t = tile_top_[tile_of(grid_, i, j)];
-        t = std::max(t, top_[std::size_t(j) * std::size_t(grid_.nx) + std::size_t(i)]);
-      }
+    row_top_.assign(std::size_t(grid_.ny) * std::size_t(tiles_across(grid_)), kNoMaterial);
+    for (std::size_t tile = 0; tile < tile_top_.size(); ++tile)
+      refresh_tile_top(tile);
   }
 
   EngineKind kind() const override { return EngineKind::Dexel; }
@@ -48,7 +46,7 @@ public:
   std::size_t memory_bytes() const override {
     return intervals_.capacity() * sizeof(ZInterval) + first_.capacity() * sizeof(std::uint32_t) +
            count_.capacity() * sizeof(std::uint16_t) +
-           (top_.capacity() + tile_top_.capacity()) * sizeof(double);
+           (top_.capacity() + tile_top_.capacity() + row_top_.capacity()) * sizeof(double);
   }
 
   bool material_at(const Point3& p) const override {
@@ -169,49 +167,65 @@ private:
   static constexpr std::size_t kMaxTileEntries = std::size_t(1) << 19;
 
   // The first and last column a step covers on each grid row of one row of tiles (first > last
-  // where it covers none), as visit_tile_columns works them out from SweptStep::row_span; made
-  // on a step's first tile in the row that has material, then read by its other tiles there.
+  // where it covers none), as SweptStep::row_span gives them: slots made on a step's first tile
+  // in the row of tiles, each row worked out the first time a tile with material on that row
+  // asks for it (span), then read by the step's other tiles there.
   class RowSpans {
   public:
     RowSpans(std::size_t begin, std::size_t end) : begin_(begin), slot_(end - begin, -1) {}
-    const int* of(std::size_t k, const SweptStep& step, const FootprintRange& f, int tj,
-                  const GridFrame& grid) {
+    // Step k's rows from max(f.j0, tj * kTileColumns) on, two ints each.
+    int* of(std::size_t k, const FootprintRange& f, int tj) {
       std::int64_t& slot = slot_[k - begin_];
       if (slot < 0) {
         slot = std::int64_t(columns_.size());
         const int ja = std::max(f.j0, tj * kTileColumns);
         const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
-        for (int j = ja; j <= jb; ++j) {
-          double xlo, xhi;
-          if (step.row_span(grid.column_y(j), xlo, xhi)) {
-            columns_.push_back(first_column_index(xlo, grid.x0, grid.dx));
-            columns_.push_back(last_column_index(xhi, grid.x0, grid.dx));
-          } else {
-            columns_.push_back(1), columns_.push_back(0);
-          }
-        }
+        columns_.resize(columns_.size() + 2 * std::size_t(jb - ja + 1), kUnknown);
       }
       return columns_.data() + slot;
     }
+    // The first and last column of `row` (a row from `of`), the step's span on grid row j.
+    static const int* span(int* row, const SweptStep& step, int j, const GridFrame& grid) {
+      if (row[0] == kUnknown) {
+        double xlo, xhi;
+        if (step.row_span(grid.column_y(j), xlo, xhi)) {
+          row[0] = first_column_index(xlo, grid.x0, grid.dx);
+          row[1] = last_column_index(xhi, grid.x0, grid.dx);
+        } else {
+          row[0] = 1, row[1] = 0;
+        }
+      }
+      return row;
+    }
 
   private:
+    static constexpr int kUnknown = std::numeric_limits<int>::min();
     std::size_t begin_;
     std::vector<std::int64_t> slot_; // by step: where its rows start in columns_, or -1
     std::vector<int> columns_;       // first and last column of each row, row after row
   };
 
+  // Whether grid row j of tile column ti has no material above z.
+  bool row_clear(int j, int ti, double z) const {
+    return row_top_[std::size_t(j) * std::size_t(tiles_across(grid_)) + std::size_t(ti)] <= z;
+  }
+
   // The footprint's columns in tile (ti, tj), row by row, cut to the step's envelope: as
   // visit_tile_columns (tile_sum.hpp) visits them, with each row's columns from `rows` (the
-  // rows from max(f.j0, tj * kTileColumns) on).
-  void visit_tile(const SweptStep& step, const FootprintRange& f, const int* rows, int ti, int tj,
+  // rows from max(f.j0, tj * kTileColumns) on), except rows of the tile with no material above
+  // the step's lowest tip: no column there is cut, and most rows of a long program's steps run
+  // where the material is gone already.
+  void visit_tile(const SweptStep& step, const FootprintRange& f, int* rows, int ti, int tj,
                   double zlow, TileResult& r) {
     const int ia = std::max(f.i0, ti * kTileColumns);
     const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
     const int ja = std::max(f.j0, tj * kTileColumns);
     const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
     for (int j = ja; j <= jb; ++j, rows += 2) {
-      const int a = std::max(ia, rows[0]);
-      const int b = std::min(ib, rows[1]);
+      if (row_clear(j, ti, zlow)) continue;
+      const int* span = RowSpans::span(rows, step, j, grid_);
+      const int a = std::max(ia, span[0]);
+      const int b = std::min(ib, span[1]);
       if (a > b) continue;
       r.columns_visited += std::uint64_t(b - a + 1);
       const double y = grid_.column_y(j);
@@ -279,16 +293,15 @@ private:
           const std::size_t run = plunge_run(list, e, swept);
           if (run > 1) {
             const FootprintRange& f = ranges[ts.step];
-            cut_plunge(list.data() + e, run, swept, f, spans.of(ts.step, step, f, tj, grid_), ti,
-                       tj, tile);
+            cut_plunge(list.data() + e, run, swept, f, spans.of(ts.step, f, tj), ti, tj, tile);
             e += run;
             continue;
           }
           ++e;
           const double zlow = step.lowest_tip_z();
           if (tile_top_[tile] <= zlow) continue; // no material above the tool in this tile
-          visit_tile(step, ranges[ts.step], spans.of(ts.step, step, ranges[ts.step], tj, grid_), ti,
-                     tj, zlow, ts.result);
+          visit_tile(step, ranges[ts.step], spans.of(ts.step, ranges[ts.step], tj), ti, tj, zlow,
+                     ts.result);
           if (ts.result.volume_mm3 > 0) refresh_tile_top(tile);
         }
       }
@@ -331,7 +344,7 @@ private:
   // columns in the order visit_tile does: the same numbers bit for bit, for a fraction of the
   // work (a drill's peck at a fine grid is hundreds of steps over the same disc of columns).
   void cut_plunge(TileStep* run, std::size_t n, const std::vector<SweptStep>& swept,
-                  const FootprintRange& f, const int* rows, int ti, int tj, std::size_t tile) {
+                  const FootprintRange& f, int* rows, int ti, int tj, std::size_t tile) {
     const SweptStep& axis = swept[run[0].step];
     std::vector<double> tips(n); // each step's lowest tip, at hand for the column loop
     for (std::size_t s = 0; s < n; ++s)
@@ -344,8 +357,10 @@ private:
     const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
     bool cut = false;
     for (int j = ja; j <= jb; ++j, rows += 2) {
-      const int a = std::max(ia, rows[0]);
-      const int b = std::min(ib, rows[1]);
+      if (row_clear(j, ti, lowest)) continue;
+      const int* span = RowSpans::span(rows, axis, j, grid_);
+      const int a = std::max(ia, span[0]);
+      const int b = std::min(ib, span[1]);
       if (a > b) continue;
       for (std::size_t s = 0; s < n; ++s)
         run[s].result.columns_visited += std::uint64_t(b - a + 1);
@@ -386,18 +401,22 @@ private:
     acc.volume_mm3 += clip_column(c, e);
   }
 
-  // The tile's highest column top, after its columns were cut.
+  // The tile's highest column top, and that of each of its rows, after its columns were cut.
   void refresh_tile_top(std::size_t tile) {
     const int across = tiles_across(grid_);
-    const int ia = int(tile % std::size_t(across)) * kTileColumns;
+    const int ti = int(tile % std::size_t(across));
+    const int ia = ti * kTileColumns;
     const int ja = int(tile / std::size_t(across)) * kTileColumns;
     const int ib = std::min(grid_.nx, ia + kTileColumns),
               jb = std::min(grid_.ny, ja + kTileColumns);
     double t = kNoMaterial;
     for (int j = ja; j < jb; ++j) {
       const double* row = top_.data() + std::size_t(j) * std::size_t(grid_.nx);
+      double r = kNoMaterial;
       for (int i = ia; i < ib; ++i)
-        t = std::max(t, row[i]);
+        r = std::max(r, row[i]);
+      row_top_[std::size_t(j) * std::size_t(across) + std::size_t(ti)] = r;
+      t = std::max(t, r);
     }
     tile_top_[tile] = t;
   }
@@ -430,6 +449,7 @@ private:
   std::vector<std::uint16_t> count_;
   std::vector<double> top_;      // top of each column's material: most columns stop here
   std::vector<double> tile_top_; // highest top_ in each tile: whole tiles stop here
+  std::vector<double> row_top_;  // highest top_ on each grid row of each tile column: rows stop
   std::vector<TileResult> scratch_;
   std::vector<std::vector<TileStep>> tile_steps_; // remove_steps: each tile's steps, in order
   EngineStats stats_;

@@ -11,6 +11,7 @@
 
 #include "ncjoule/removal.hpp"
 #include "setups.hpp"
+#include "spare_bin.hpp"
 
 namespace ncjoule::estimate_detail {
 
@@ -26,8 +27,10 @@ struct RemovedBatch {
 class BatchRemoval {
 public:
   // `removals`: one simulator per setup (`setups` tells which command is in which), or none.
-  BatchRemoval(std::vector<RemovalSimulator*> removals, SetupIndex setups)
-      : removals_(std::move(removals)), setups_(std::move(setups)) {}
+  // `spares`: batches the folding is done with, whose memory new batches reuse (spare_bin.hpp).
+  BatchRemoval(std::vector<RemovalSimulator*> removals, SetupIndex setups,
+               SpareBin<RemovedBatch>* spares = nullptr)
+      : removals_(std::move(removals)), setups_(std::move(setups)), spares_(spares) {}
 
   // Adds a command; when that fills the batch, the batch removed.
   std::optional<RemovedBatch> take(const CanonCommand& command, TimedCommand&& timed);
@@ -36,9 +39,12 @@ public:
 
 private:
   RemovedBatch remove_batch();
+  // An empty batch to fill next: a spare one where there is one.
+  RemovedBatch next_batch();
 
   std::vector<RemovalSimulator*> removals_;
   SetupIndex setups_;
+  SpareBin<RemovedBatch>* spares_;
   RemovedBatch batch_; // being filled
   std::size_t batch_samples_ = 0;
   std::vector<TimedMove> moves_; // scratch

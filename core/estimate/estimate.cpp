@@ -513,9 +513,13 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
   try {
     double total_s = 0;
     std::vector<Diagnostic> planner_diagnostics;
-    // Three stages after the replay: the planner, removal (a batch at a time), the folding.
-    estimate_detail::BatchRemoval removal(setup_removals, setup_index);
+    // Three stages after the replay: the planner, removal (a batch at a time), the folding. The
+    // folding hands the memory of what it is done with back to the first two (spare_bin.hpp).
     using estimate_detail::RemovedBatch;
+    estimate_detail::SpareBin<RemovedBatch> spare_batches(4);
+    estimate_detail::SpareBin<std::vector<MotionSample>> spare_samples(Planner::kMaxSpareSamples);
+    estimate_detail::BatchRemoval removal(setup_removals, setup_index, &spare_batches);
+    std::vector<std::vector<MotionSample>> spent_samples; // the folding's, given back
     estimate_detail::run_overlapped<RemovedBatch>(
         options.overlap_stages,
         [&](estimate_detail::StageQueue<RemovedBatch>& removed) {
@@ -526,7 +530,17 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
                   timed.push({c, std::move(t)});
                 });
                 estimate_detail::MachineMoves view(setup, offsets_given, home_z, source.path);
-                commands_again(true, [&](const CanonCommand& c) { planner.add(view.view(c)); });
+                std::vector<std::vector<MotionSample>> reused;
+                std::size_t added = 0;
+                commands_again(true, [&](const CanonCommand& c) {
+                  if (++added % 256 == 0) { // the samples the folding gave back, a bin at a time
+                    spare_samples.take_all(reused);
+                    for (std::vector<MotionSample>& samples : reused)
+                      planner.reuse_samples(std::move(samples));
+                    reused.clear();
+                  }
+                  planner.add(view.view(c));
+                });
                 total_s = planner.finish();
                 planner_diagnostics = planner.take_diagnostics();
               },
@@ -539,7 +553,17 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
               });
           if (auto batch = removal.finish()) removed.push(std::move(*batch));
         },
-        [&](RemovedBatch& batch) { folder.take(batch); }, 1, 4);
+        [&](RemovedBatch& batch) {
+          folder.take(batch);
+          // A long move's samples are left to be freed; the rest go back to the planner.
+          constexpr std::size_t kKeptSamples = 256;
+          for (TimedCommand& timed : batch.timed)
+            if (timed.samples.capacity() > 0 && timed.samples.capacity() <= kKeptSamples)
+              spent_samples.push_back(std::move(timed.samples));
+          spare_samples.give_all(spent_samples);
+          spare_batches.give(std::move(batch));
+        },
+        1, 4);
     add_diagnostics(e, std::move(planner_diagnostics), source.path);
     folder.finish(total_s);
   } catch (const BudgetExceeded& stopped) {

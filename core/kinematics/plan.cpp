@@ -120,6 +120,7 @@ struct Planner::Impl {
   double clock = 0;
   double path_speed = 0; // speed of the path at the current point (for zero-length moves)
   Planner::Work work;
+  std::vector<std::vector<MotionSample>> spare_samples; // reuse_samples(): memory for samples
 
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
 };
@@ -281,6 +282,11 @@ void Planner::Impl::time(WaitingCommand& w) {
   TimedCommand& out = w.timed;
   const std::size_t i = out.command;
   out.start_s = clock;
+  if (w.plan.timing != MoveTiming::NotAMove && !spare_samples.empty()) {
+    out.samples = std::move(spare_samples.back());
+    out.samples.clear();
+    spare_samples.pop_back();
+  }
   switch (w.plan.timing) {
   case MoveTiming::NotAMove:
     if (out.duration_s > 0 || c.kind == CanonKind::ProgramStop ||
@@ -371,6 +377,11 @@ Planner::~Planner() = default;
 
 void Planner::add(const CanonCommand& command) {
   impl_->add(command);
+}
+
+void Planner::reuse_samples(std::vector<MotionSample>&& spent) {
+  if (spent.capacity() > 0 && impl_->spare_samples.size() < kMaxSpareSamples)
+    impl_->spare_samples.push_back(std::move(spent));
 }
 
 double Planner::finish() {

@@ -285,7 +285,19 @@ RemovalSimulator::~RemovalSimulator() = default;
 
 void RemovalSimulator::remove(const std::vector<TimedMove>& moves,
                               std::vector<CommandRemoval>& out) {
-  out.assign(moves.size(), CommandRemoval{});
+  // `out`'s results are emptied, not made anew: a stream that hands them back (a spare batch)
+  // fills their step vectors again without allocating, up to a long move's size.
+  out.resize(moves.size());
+  for (CommandRemoval& r : out) {
+    constexpr std::size_t kKeptSteps = 4096;
+    std::vector<double> volumes = std::move(r.step_volume_mm3);
+    std::vector<float> depths = std::move(r.step_depth_mm);
+    r = CommandRemoval{};
+    if (volumes.capacity() <= kKeptSteps) r.step_volume_mm3 = std::move(volumes);
+    if (depths.capacity() <= kKeptSteps) r.step_depth_mm = std::move(depths);
+    r.step_volume_mm3.clear();
+    r.step_depth_mm.clear();
+  }
   if (!engine_) return;
   const double z_sign = options_.mirror_z ? -1.0 : 1.0;
   // Every move's steps, in order, in one batch; first[k] is move k's first step.

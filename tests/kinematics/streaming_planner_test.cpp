@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "test_helpers.hpp"
@@ -113,5 +114,61 @@ TEST_CASE("a long program goes out while it comes in") {
     CHECK(out_before_end == toolpath.commands.size());
     CAPTURE(most_waiting);
     CHECK(most_waiting < 400); // a window, not the program
+  }
+}
+
+TEST_CASE("samples vectors handed back are filled again, and every sample is the same") {
+  // A stream hands each move's samples back once it is done with them (Planner::reuse_samples),
+  // dirty; later moves' samples must go into their memory and come out as a fresh planner's.
+  std::ostringstream program;
+  program << "G21 G90 G64\nF2000\n";
+  for (int i = 0; i < 3000; ++i) {
+    if (i % 50 == 0) program << "G3 X" << (i % 7) << " Y" << i * 0.01 << " R4\n";
+    program << "G1 X" << (i % 7) * 1.5 << " Y" << i * 0.01 << " Z" << -(i % 3) * 0.2 << "\n";
+  }
+  program << "M2\n";
+  const Toolpath toolpath = interpret(make_source("reuse.ngc", program.str()));
+  PlanOptions options;
+  options.max_sample_step_mm = 0.3;
+  for (const MachineProfile& machine : machines()) {
+    CAPTURE(machine.kinematics.junction_rule);
+    const Timeline fresh = plan(toolpath.commands, machine, options);
+    std::vector<TimedCommand> timed;
+    std::vector<std::vector<MotionSample>> spent;
+    std::set<const MotionSample*> handed_back;
+    std::size_t reused = 0, sampled = 0;
+    Planner planner(machine, options, [&](const CanonCommand&, TimedCommand& t) {
+      sampled += !t.samples.empty();
+      reused += handed_back.count(t.samples.data());
+      timed.push_back(t); // a copy: this one's samples go back
+      for (MotionSample& s : t.samples)
+        s.t_s = s.speed_mm_s = -1; // what a reused vector held must not matter
+      spent.push_back(std::move(t.samples));
+    });
+    for (const CanonCommand& c : toolpath.commands) {
+      for (std::vector<MotionSample>& samples : spent) {
+        handed_back.insert(samples.data());
+        planner.reuse_samples(std::move(samples));
+      }
+      spent.clear();
+      planner.add(c);
+    }
+    const double total_s = planner.finish();
+    CHECK(total_s == fresh.total_s);
+    REQUIRE(timed.size() == fresh.commands.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < timed.size(); ++i) {
+      const std::vector<MotionSample>& a = timed[i].samples;
+      const std::vector<MotionSample>& b = fresh.commands[i].samples;
+      bool same = a.size() == b.size() && timed[i].duration_s == fresh.commands[i].duration_s;
+      for (std::size_t j = 0; same && j < a.size(); ++j)
+        same = a[j].t_s == b[j].t_s && a[j].u == b[j].u && a[j].speed_mm_s == b[j].speed_mm_s &&
+               a[j].position.x == b[j].position.x && a[j].position.y == b[j].position.y &&
+               a[j].position.z == b[j].position.z;
+      differing += !same;
+    }
+    CHECK(differing == 0);
+    CAPTURE(sampled);
+    CHECK(reused * 10 > sampled * 9); // nearly every move's samples went into given memory
   }
 }

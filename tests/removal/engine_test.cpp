@@ -203,3 +203,50 @@ TEST_CASE("a step grazing the stock within rounding removes nothing, a thin real
     CHECK(r.commands[6].removed_mm3 > 1e-3);
   }
 }
+
+TEST_CASE("removing batch after batch into the same results gives every result anew") {
+  // A stream removes each batch into the results of one it is done with (their step vectors'
+  // memory reused): nothing of what they held may carry over, neither into a cut nor into a move
+  // that removes nothing (the V-bit's, left out of the tools). Batches of 3 moves into one dirty
+  // vector against the whole program at once.
+  auto tools = mixed_tools();
+  tools.erase(5);
+  const ProgramBuilder p = mixed_program();
+  const Timeline tl = constant_speed_timeline(p.commands(), recommended_sample_step(tools, 0.2));
+  RemovalOptions o;
+  o.grid_mm = 0.2;
+  const RemovalResult whole = simulate_removal(p.commands(), tl, tools, box_stock(kMixedStock), o);
+  REQUIRE(whole.removed_mm3 > 1000);
+
+  StockExtent extent;
+  for (const CanonCommand& c : p.commands())
+    extent.add(c);
+  RemovalSimulator simulator(box_stock(kMixedStock), extent, tools, o);
+  REQUIRE(simulator.ready());
+  std::vector<CommandRemoval> out, all;
+  for (std::size_t first = 0; first < tl.commands.size(); first += 3) {
+    std::vector<TimedMove> moves;
+    for (std::size_t k = first; k < std::min(first + 3, tl.commands.size()); ++k)
+      moves.push_back({k, &p.commands()[tl.commands[k].command], &tl.commands[k]});
+    for (CommandRemoval& r : out) { // what the last batch left, made dirtier still
+      r.removed_mm3 = r.mrr_peak_mm3_s = 1e9;
+      r.collision = true;
+      r.step_volume_mm3.assign(r.step_volume_mm3.size() + 2, 7.0);
+      r.step_depth_mm.assign(r.step_depth_mm.size() + 2, 7.0f);
+    }
+    simulator.remove(moves, out);
+    REQUIRE(out.size() == moves.size());
+    all.insert(all.end(), out.begin(), out.end());
+  }
+  REQUIRE(all.size() == whole.commands.size());
+  std::size_t differing = 0, cutting = 0;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const CommandRemoval &a = all[k], &b = whole.commands[k];
+    cutting += b.removed_mm3 > 0;
+    differing += !(a.step_volume_mm3 == b.step_volume_mm3 && a.step_depth_mm == b.step_depth_mm &&
+                   a.removed_mm3 == b.removed_mm3 && a.mrr_mean_mm3_s == b.mrr_mean_mm3_s &&
+                   a.mrr_peak_mm3_s == b.mrr_peak_mm3_s && a.collision == b.collision);
+  }
+  CHECK(cutting > 5);
+  CHECK(differing == 0);
+}

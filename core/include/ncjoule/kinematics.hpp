@@ -78,6 +78,11 @@ public:
   double finish();
   // Warnings about moves and codes so far (each kind once, with a count).
   std::vector<Diagnostic> take_diagnostics();
+  // A samples vector of a command the caller is done with, for a later move's samples to use
+  // its memory: a stream that hands them back allocates nothing per move once it runs (at most
+  // kMaxSpareSamples are kept). Its contents do not matter.
+  void reuse_samples(std::vector<MotionSample>&& spent);
+  static constexpr std::size_t kMaxSpareSamples = 8192;
 
   // The work done so far, counted, for tests that it stays linear in the program whatever the
   // program (a run of zero-length moves, a long stretch with no point of known speed).

@@ -598,7 +598,8 @@ public:
   // Removes a batch of moves, in order: out[k] is moves[k]'s removal. Moves of a tool not in
   // `tools`, and commands that are not moves, remove nothing. Rapids that cut a given stock are
   // flagged as collisions with a warning; rapids that enter a guessed stock show where the guess
-  // is too large: what they pass through is air (no volume), and summary() notes them.
+  // is too large: what they pass through is air (no volume), and summary() notes them. What
+  // `out` held is replaced; the memory of its step vectors is reused.
   void remove(const std::vector<TimedMove>& moves, std::vector<CommandRemoval>& out);
   // Everything but the per-command list: stock, grid, volumes, memory, work counters, and the
   // diagnostics so far.

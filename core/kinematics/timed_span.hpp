@@ -40,7 +40,7 @@ private:
   double whole_distance_at(double t) const;
   double whole_speed_at(double t) const;
 
-  std::array<VelocityProfile, kMaxPieces> pieces_{};
+  std::array<VelocityProfile, kMaxPieces> pieces_; // the first count_ are set
   int count_ = 0;
   double total_length_ = 0, total_duration_ = 0;
   double begin_s_ = 0, end_s_ = 0, begin_t_ = 0, end_t_ = 0;

@@ -25,8 +25,11 @@ bool within(double value, double bound) {
 } // namespace
 
 std::optional<std::string> word_out_of_range(char letter, double value, bool inch) {
-  const std::string word(1, char(std::toupper(static_cast<unsigned char>(letter))));
-  if (!std::isfinite(value)) return word + " is not a finite number";
+  // Made only for a message: every word of a program comes through here.
+  auto word = [letter] {
+    return std::string(1, char(std::toupper(static_cast<unsigned char>(letter))));
+  };
+  if (!std::isfinite(value)) return word() + " is not a finite number";
   switch (letter) {
   case 'x':
   case 'y':
@@ -41,15 +44,15 @@ std::optional<std::string> word_out_of_range(char letter, double value, bool inc
   case 'w':
   case '@':
     if (within(value, max_length(inch))) return std::nullopt;
-    return word + " is out of range: lengths go to +-" + bound_text(max_length(inch)) +
+    return word() + " is out of range: lengths go to +-" + bound_text(max_length(inch)) +
            (inch ? " in" : " mm") + ", the most an industrial control takes";
   case 'a':
   case 'b':
   case 'c':
   case '^':
     if (within(value, limit::kAngleDeg)) return std::nullopt;
-    return word + " is out of range: angles go to +-99,999.999 degrees, the most an industrial "
-                  "control takes";
+    return word() + " is out of range: angles go to +-99,999.999 degrees, the most an industrial "
+                    "control takes";
   case 'f':
     if (value != 0 && std::abs(value) < limit::kSmallestFeed)
       return "F is out of range: a feed rate other than 0 is at least 0.0001";
@@ -60,7 +63,7 @@ std::optional<std::string> word_out_of_range(char letter, double value, bool inc
     return "S is out of range: spindle speeds go to 1,000,000 rpm";
   default:
     if (within(value, limit::kOtherWord)) return std::nullopt;
-    return word + " is out of range: values go to +-99,999,999 (eight digits)";
+    return word() + " is out of range: values go to +-99,999,999 (eight digits)";
   }
 }
 

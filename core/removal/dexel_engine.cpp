@@ -34,7 +34,7 @@ public:
       top_[c] = count_[c] ? intervals_[first_[c] + count_[c] - 1].hi : kNoMaterial;
     }
     tile_top_.assign(tile_count(grid_), kNoMaterial);
-    row_top_.assign(std::size_t(grid_.ny) * std::size_t(tiles_across(grid_)), kNoMaterial);
+    row_top_.assign(tile_count(grid_) * kTileColumns, kNoMaterial);
     for (std::size_t tile = 0; tile < tile_top_.size(); ++tile)
       refresh_tile_top(tile);
   }
@@ -205,9 +205,9 @@ private:
     std::vector<int> columns_;       // first and last column of each row, row after row
   };
 
-  // Whether grid row j of tile column ti has no material above z.
-  bool row_clear(int j, int ti, double z) const {
-    return row_top_[std::size_t(j) * std::size_t(tiles_across(grid_)) + std::size_t(ti)] <= z;
+  // Whether grid row j, in `tile`, has no material above z there.
+  bool row_clear(std::size_t tile, int j, double z) const {
+    return row_top_[tile * kTileColumns + std::size_t(j % kTileColumns)] <= z;
   }
 
   // The footprint's columns in tile (ti, tj), row by row, cut to the step's envelope: as
@@ -216,13 +216,13 @@ private:
   // the step's lowest tip: no column there is cut, and most rows of a long program's steps run
   // where the material is gone already.
   void visit_tile(const SweptStep& step, const FootprintRange& f, int* rows, int ti, int tj,
-                  double zlow, TileResult& r) {
+                  std::size_t tile, double zlow, TileResult& r) {
     const int ia = std::max(f.i0, ti * kTileColumns);
     const int ib = std::min(f.i1, ti * kTileColumns + kTileColumns - 1);
     const int ja = std::max(f.j0, tj * kTileColumns);
     const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
     for (int j = ja; j <= jb; ++j, rows += 2) {
-      if (row_clear(j, ti, zlow)) continue;
+      if (row_clear(tile, j, zlow)) continue;
       const int* span = RowSpans::span(rows, step, j, grid_);
       const int a = std::max(ia, span[0]);
       const int b = std::min(ib, span[1]);
@@ -250,6 +250,9 @@ private:
       for (int tj = f.tj0; tj <= f.tj1; ++tj)
         for (int ti = f.ti0; ti <= f.ti1; ++ti) {
           const std::size_t tile = std::size_t(tj) * std::size_t(across) + std::size_t(ti);
+          // A tile with no material above the step's lowest tip now has none later in the
+          // chunk either (material only goes): the step would cut nothing there.
+          if (tile_top_[tile] <= swept[k].lowest_tip_z()) continue;
           if (tile_steps_[tile].empty()) touched.push_back(std::uint32_t(tile));
           tile_steps_[tile].push_back({std::uint32_t(k), {}});
         }
@@ -300,8 +303,8 @@ private:
           ++e;
           const double zlow = step.lowest_tip_z();
           if (tile_top_[tile] <= zlow) continue; // no material above the tool in this tile
-          visit_tile(step, ranges[ts.step], spans.of(ts.step, ranges[ts.step], tj), ti, tj, zlow,
-                     ts.result);
+          visit_tile(step, ranges[ts.step], spans.of(ts.step, ranges[ts.step], tj), ti, tj, tile,
+                     zlow, ts.result);
           if (ts.result.volume_mm3 > 0) refresh_tile_top(tile);
         }
       }
@@ -357,7 +360,7 @@ private:
     const int jb = std::min(f.j1, tj * kTileColumns + kTileColumns - 1);
     bool cut = false;
     for (int j = ja; j <= jb; ++j, rows += 2) {
-      if (row_clear(j, ti, lowest)) continue;
+      if (row_clear(tile, j, lowest)) continue;
       const int* span = RowSpans::span(rows, axis, j, grid_);
       const int a = std::max(ia, span[0]);
       const int b = std::min(ib, span[1]);
@@ -415,7 +418,7 @@ private:
       double r = kNoMaterial;
       for (int i = ia; i < ib; ++i)
         r = std::max(r, row[i]);
-      row_top_[std::size_t(j) * std::size_t(across) + std::size_t(ti)] = r;
+      row_top_[tile * kTileColumns + std::size_t(j - ja)] = r;
       t = std::max(t, r);
     }
     tile_top_[tile] = t;
@@ -449,7 +452,7 @@ private:
   std::vector<std::uint16_t> count_;
   std::vector<double> top_;      // top of each column's material: most columns stop here
   std::vector<double> tile_top_; // highest top_ in each tile: whole tiles stop here
-  std::vector<double> row_top_;  // highest top_ on each grid row of each tile column: rows stop
+  std::vector<double> row_top_;  // highest top_ on each grid row of each tile, tile by tile
   std::vector<TileResult> scratch_;
   std::vector<std::vector<TileStep>> tile_steps_; // remove_steps: each tile's steps, in order
   EngineStats stats_;

@@ -555,8 +555,9 @@ static Estimate estimate_with(const SourceFile& source, const MachineProfile& ma
         },
         [&](RemovedBatch& batch) {
           folder.take(batch);
-          // A long move's samples are left to be freed; the rest go back to the planner.
-          constexpr std::size_t kKeptSamples = 256;
+          // A long move's samples are left to be freed, the rest go back to the planner: at most
+          // 64 samples (4.6 kB) each, a few MiB in all whatever the program.
+          constexpr std::size_t kKeptSamples = 64;
           for (TimedCommand& timed : batch.timed)
             if (timed.samples.capacity() > 0 && timed.samples.capacity() <= kKeptSamples)
               spent_samples.push_back(std::move(timed.samples));

@@ -82,7 +82,7 @@ public:
   // its memory: a stream that hands them back allocates nothing per move once it runs (at most
   // kMaxSpareSamples are kept). Its contents do not matter.
   void reuse_samples(std::vector<MotionSample>&& spent);
-  static constexpr std::size_t kMaxSpareSamples = 8192;
+  static constexpr std::size_t kMaxSpareSamples = 4096;
 
   // The work done so far, counted, for tests that it stays linear in the program whatever the
   // program (a run of zero-length moves, a long stretch with no point of known speed).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "fixture.hpp"
 #include "swept_step.hpp"
@@ -69,39 +70,49 @@ WalkCount check_ramps_against_walk(const Tool& tool, std::mt19937& random) {
   return count;
 }
 
+// Every tool's ramps against the walk: the columns checked, and those whose minimum lies inside a
+// step rather than at its ends, summed over the tools.
+WalkCount check_tools_against_walk(const std::vector<Tool>& tools, unsigned seed) {
+  std::mt19937 random(seed);
+  WalkCount total;
+  for (const Tool& tool : tools) {
+    CAPTURE(tool.diameter_mm);
+    CAPTURE(tool.tip_angle_deg);
+    CAPTURE(tool.tip_diameter_mm);
+    CAPTURE(tool.corner_radius_mm);
+    const WalkCount count = check_ramps_against_walk(tool, random);
+    total.columns += count.columns, total.interior += count.interior;
+  }
+  return total;
+}
+
 } // namespace
 
 TEST_CASE("a V-bit's lowest bottom along ramps is the true minimum, tip flat or pointed") {
-  std::mt19937 random(43);
-  WalkCount total;
+  std::vector<Tool> vbits;
   for (const double tip : {0.0, 0.8})
     for (const double angle : {30.0, 60.0, 90.0, 120.0}) {
       Tool vbit = flat_end_mill(1, 6);
       vbit.shape = ToolShape::Chamfer;
       vbit.tip_angle_deg = angle;
       vbit.tip_diameter_mm = tip;
-      CAPTURE(tip);
-      CAPTURE(angle);
-      const WalkCount count = check_ramps_against_walk(vbit, random);
-      total.columns += count.columns, total.interior += count.interior;
+      vbits.push_back(vbit);
     }
+  const WalkCount total = check_tools_against_walk(vbits, 43);
   CHECK(total.columns > 2000);
   CHECK(total.interior > 200);
 }
 
 TEST_CASE("a bull nose's lowest bottom along ramps is the true minimum") {
-  std::mt19937 random(44);
-  WalkCount total;
+  std::vector<Tool> bulls;
   for (const double corner : {0.25, 1.0, 2.9, 3.0})
     for (const double diameter : {6.0, 10.0}) {
       Tool bull = flat_end_mill(1, diameter);
       bull.shape = ToolShape::BullNose;
       bull.corner_radius_mm = corner;
-      CAPTURE(corner);
-      CAPTURE(diameter);
-      const WalkCount count = check_ramps_against_walk(bull, random);
-      total.columns += count.columns, total.interior += count.interior;
+      bulls.push_back(bull);
     }
+  const WalkCount total = check_tools_against_walk(bulls, 44);
   CHECK(total.columns > 2000);
   CHECK(total.interior > 200);
 }

@@ -2,6 +2,7 @@
 // trace, component by component, so the components add up to the total by construction.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "ncjoule/energy.hpp"
@@ -138,9 +139,21 @@ void EnergyIntegrator::note_cutting(const OperatingPoint& p) {
   cut_mrr_max_ = std::max(cut_mrr_max_, p.mrr_mm3_s);
 }
 
+const ComponentValues& EnergyIntegrator::power_at(const OperatingPoint& point) {
+  // Bits, not ==: a point equal to the last but for the sign of a zero gets its own evaluation,
+  // so reusing a result never changes one.
+  if (!has_last_point_ || std::memcmp(&point, &last_point_, sizeof point) != 0) {
+    last_point_ = point;
+    last_power_ = evaluate_power_(point);
+    has_last_point_ = true;
+  }
+  return last_power_;
+}
+
 CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand& command,
                                           const TimedCommand& timed, const OperatingSegment* first,
-                                          const OperatingSegment* last, double removed_mm3) {
+                                          const OperatingSegment* last, double removed_mm3,
+                                          std::vector<SegmentPower>* powers) {
   CommandEnergy ce;
   ce.command = index;
   ce.line = timed.line;
@@ -150,13 +163,15 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
   for (const OperatingSegment* it = first; it != last; ++it) {
     const OperatingSegment& seg = *it;
     const double dt = seg.t1_s - seg.t0_s;
-    const ComponentValues a = evaluate_power_(seg.start);
-    const ComponentValues b = evaluate_power_(seg.end);
+    const ComponentValues a = power_at(seg.start);
+    const ComponentValues b = power_at(seg.end);
     for (std::size_t c = 0; c < kPowerComponentCount; ++c)
       ce.components_j[c] += 0.5 * (a[c] + b[c]) * dt;
-    const double peak = std::max(component_sum(a), component_sum(b));
+    const double sum_a = component_sum(a), sum_b = component_sum(b);
+    if (powers) powers->push_back({sum_a, sum_b});
+    const double peak = std::max(sum_a, sum_b);
     constexpr std::size_t kCutting = static_cast<std::size_t>(PowerComponent::Cutting);
-    const double uncut = std::max(component_sum(a) - a[kCutting], component_sum(b) - b[kCutting]);
+    const double uncut = std::max(sum_a - a[kCutting], sum_b - b[kCutting]);
     ce.peak_power_w = has_power ? std::max(ce.peak_power_w, peak) : peak;
     ce.peak_power_without_cutting_w =
         has_power ? std::max(ce.peak_power_without_cutting_w, uncut) : uncut;
@@ -193,7 +208,8 @@ CommandEnergy EnergyIntegrator::integrate(std::size_t index, const CanonCommand&
 CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& command,
                                     const TimedCommand& timed, const CommandRemoval* removal,
                                     std::vector<OperatingSegment>& segments,
-                                    std::vector<Diagnostic>* diagnostics) {
+                                    std::vector<Diagnostic>* diagnostics,
+                                    std::vector<SegmentPower>* powers) {
   const std::size_t first = segments.size();
   append_operating_segments(index, command, timed, removal, previous_rpm_, segments, diagnostics);
   if (removal && removal->removed_mm3 > 0)
@@ -201,7 +217,7 @@ CommandEnergy EnergyIntegrator::add(std::size_t index, const CanonCommand& comma
   note_spindle(command, segments.data() + first, segments.data() + segments.size());
   correct_for_chip_thickness(command, segments.data() + first, segments.data() + segments.size());
   return integrate(index, command, timed, segments.data() + first,
-                   segments.data() + segments.size(), removal ? removal->removed_mm3 : 0.0);
+                   segments.data() + segments.size(), removal ? removal->removed_mm3 : 0.0, powers);
 }
 
 EnergyResult EnergyIntegrator::totals(double program_duration_s) const {

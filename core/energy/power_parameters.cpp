@@ -161,11 +161,4 @@ std::string_view component_name(PowerComponent component) {
   return names.at(static_cast<std::size_t>(component));
 }
 
-double component_sum(const ComponentValues& values) {
-  double sum = 0;
-  for (double v : values)
-    sum += v;
-  return sum;
-}
-
 } // namespace ncjoule

@@ -38,8 +38,8 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
                            std::vector<RemovalSimulator*> removals, SetupIndex setups,
                            const std::vector<SetupStart>& starts, std::size_t expected_commands,
                            Estimate& out)
-    : source_(source), dialect_(dialect), power_constants_(power), evaluate_power_(power),
-      options_(options), removals_(std::move(removals)), setups_(std::move(setups)), out_(out),
+    : source_(source), dialect_(dialect), power_constants_(power), options_(options),
+      removals_(std::move(removals)), setups_(std::move(setups)), out_(out),
       expected_commands_(expected_commands), lines_(source.lines.size()),
       energy_(power, options.energy), operations_(source, dialect) {
   for (const SetupStart& start : starts)
@@ -57,8 +57,9 @@ void ResultFolder::take(const RemovedBatch& batch) {
     const TimedCommand& timed = batch.timed[k];
     const CommandRemoval* removed = batch.removal_known ? &batch.removed[k] : nullptr;
     segments_.clear();
+    segment_powers_.clear();
     const CommandEnergy energy =
-        energy_.add(index, command, timed, removed, segments_, &out_.diagnostics);
+        energy_.add(index, command, timed, removed, segments_, &out_.diagnostics, &segment_powers_);
     const std::size_t operation = operations_.take(command, timed);
     const std::size_t setup_index = setups_.of(index);
     const bool guessed = batch.removal_known && !guessed_setups_.empty() &&
@@ -69,7 +70,7 @@ void ResultFolder::take(const RemovedBatch& batch) {
     setup.time_s += timed.duration_s;
     setup.energy_j += energy.energy_j;
     if (removed) setup.removed_mm3 += removed->removed_mm3;
-    follow_path(command, timed, segments_);
+    follow_path(command, timed, segments_, segment_powers_);
     if (options_.keep_trace)
       out_.trace.insert(out_.trace.end(), segments_.begin(), segments_.end());
   }
@@ -164,14 +165,14 @@ void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
 
 // The power and MRR series, and the path: one point per end of every segment.
 void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& timed,
-                               const std::vector<OperatingSegment>& segments) {
+                               const std::vector<OperatingSegment>& segments,
+                               const std::vector<SegmentPower>& powers) {
   const bool move = is_move(command.kind);
-  for (const OperatingSegment& seg : segments) {
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const OperatingSegment& seg = segments[i];
     if (!(seg.t1_s > seg.t0_s)) continue; // instants draw nothing
-    const double p0 = component_sum(evaluate_power_(seg.start));
-    const double p1 = component_sum(evaluate_power_(seg.end));
-    power_.add(seg.t0_s, p0);
-    power_.add(seg.t1_s, p1);
+    power_.add(seg.t0_s, powers[i].start_w);
+    power_.add(seg.t1_s, powers[i].end_w);
     mrr_.add(seg.t0_s, seg.start.mrr_mm3_s);
     mrr_.add(seg.t1_s, seg.end.mrr_mm3_s);
   }
@@ -183,8 +184,7 @@ void ResultFolder::follow_path(const CanonCommand& command, const TimedCommand& 
     while (s + 1 < segments.size() && segments[s].t1_s < t)
       ++s;
     if (segments.empty()) return std::pair{0.0, 0.0};
-    const OperatingPoint& p = segments[s].end;
-    return std::pair{component_sum(evaluate_power_(p)), p.mrr_mm3_s};
+    return std::pair{powers[s].end_w, segments[s].end.mrr_mm3_s};
   };
   auto add = [&](const Pose& at, double t) {
     const auto [power, mrr] = power_at(t);

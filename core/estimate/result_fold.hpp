@@ -38,14 +38,15 @@ private:
   // What a command under a guessed stock adds to the range of the guessed figures.
   void follow_guess(const TimedCommand& timed, const CommandRemoval* removed,
                     const CommandEnergy& energy, bool stock_guessed);
+  // `powers`: the total power at the ends of each of `segments` (the integrator's).
   void follow_path(const CanonCommand& command, const TimedCommand& timed,
-                   const std::vector<OperatingSegment>& segments);
+                   const std::vector<OperatingSegment>& segments,
+                   const std::vector<SegmentPower>& powers);
   std::uint16_t note_index(const std::string& note);
 
   const SourceFile& source_;
   const Dialect& dialect_;
   const PowerConstants& power_constants_;
-  const PowerEvaluator evaluate_power_; // of power_constants_
   const EstimateOptions& options_;
   // The setups' removal results as one: the program's.
   RemovalResult merged_removal() const;
@@ -79,6 +80,7 @@ private:
 
   // Scratch, reused command after command.
   std::vector<OperatingSegment> segments_;
+  std::vector<SegmentPower> segment_powers_;
 };
 
 } // namespace ncjoule::estimate_detail

@@ -60,7 +60,12 @@ using ComponentValues = std::array<double, kPowerComponentCount>;
 
 // "tare", "coolant", "spindle", "axis_x", "axis_y", "axis_z", "cutting", "tool_change"
 std::string_view component_name(PowerComponent component);
-double component_sum(const ComponentValues& values);
+inline double component_sum(const ComponentValues& values) {
+  double sum = 0;
+  for (double v : values)
+    sum += v;
+  return sum;
+}
 
 // ---------------------------------------------------------------------------------------------
 // Operating point: what the machine does at one instant; the input of every power model.
@@ -271,6 +276,12 @@ struct EnergyResult {
   std::vector<Diagnostic> diagnostics;
 };
 
+// The total power at the two ends of an operating segment, W (component_sum of the model's
+// components there).
+struct SegmentPower {
+  double start_w = 0, end_w = 0;
+};
+
 // Energy one command at a time, in program order: estimate_energy for a pipeline that keeps no
 // program-sized lists. The totals add up the commands given so far.
 class EnergyIntegrator {
@@ -278,16 +289,19 @@ public:
   explicit EnergyIntegrator(const PowerConstants& constants, const EnergyOptions& options = {});
   // The spindle speed before the first command (0: stopped).
   void set_rpm_before(double rpm);
-  // One command: its operating segments (appended to `segments`) and its energy.
+  // One command: its operating segments (appended to `segments`) and its energy. With `powers`,
+  // the total power at the ends of each new segment is appended to it, parallel to `segments`
+  // (for a power series that would otherwise evaluate the model again).
   CommandEnergy add(std::size_t index, const CanonCommand& command, const TimedCommand& timed,
                     const CommandRemoval* removal, std::vector<OperatingSegment>& segments,
-                    std::vector<Diagnostic>* diagnostics = nullptr);
+                    std::vector<Diagnostic>* diagnostics = nullptr,
+                    std::vector<SegmentPower>* powers = nullptr);
   // One command whose segments are already made (integrate_energy's form).
   CommandEnergy integrate(std::size_t index, const CanonCommand& command, const TimedCommand& timed,
                           const std::vector<OperatingSegment>& segments, double removed_mm3);
   CommandEnergy integrate(std::size_t index, const CanonCommand& command, const TimedCommand& timed,
                           const OperatingSegment* first, const OperatingSegment* last,
-                          double removed_mm3);
+                          double removed_mm3, std::vector<SegmentPower>* powers = nullptr);
   // The totals (no per-command list); `program_duration_s` > 0 replaces the sum of durations.
   // Its diagnostics say where the cutting term was used outside the speeds and removal rates
   // its constants were fitted on (once per program).
@@ -297,11 +311,17 @@ private:
   void correct_for_chip_thickness(const CanonCommand& command, OperatingSegment* first,
                                   OperatingSegment* last) const;
   void note_cutting(const OperatingPoint& point);
+  // The model's power at `point`: the last point's again when `point` has the same bits (a
+  // segment's end is the next one's start).
+  const ComponentValues& power_at(const OperatingPoint& point);
   void spin_for_stopped_cut(const CanonCommand& command, OperatingSegment* first,
                             OperatingSegment* last);
 
   const PowerConstants& constants_;
   const PowerEvaluator evaluate_power_; // of constants_
+  OperatingPoint last_point_;           // the point last evaluated, and its power
+  ComponentValues last_power_{};
+  bool has_last_point_ = false;
   EnergyOptions options_;
   double previous_rpm_ = 0;
   EnergyResult totals_;

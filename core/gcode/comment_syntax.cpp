@@ -114,6 +114,21 @@ void scan_line(std::string_view line, const Dialect& dialect, Comment comment, C
 } // namespace
 
 LineComments line_comments(std::string_view line, const Dialect& dialect) {
+  // Most lines of a program are code alone: a line without any of the characters scan_line
+  // treats apart holds no comment, and has code where it holds more than blanks and '%'. Told
+  // in one pass without the scanner: the estimate reads every line's comments three times.
+  LineComments out;
+  for (const char c : line) {
+    if (c == '(' || c == ')' || c == '"' || c == '*' || c == ';')
+      return detail::scanned_line_comments(line, dialect);
+    if (!(c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '%')) out.has_code = true;
+  }
+  return out;
+}
+
+namespace detail {
+
+LineComments scanned_line_comments(std::string_view line, const Dialect& dialect) {
   LineComments out;
   scan_line(
       line, dialect,
@@ -123,8 +138,6 @@ LineComments line_comments(std::string_view line, const Dialect& dialect) {
       [&](std::size_t, std::size_t, bool) { out.has_code = true; }, [](std::size_t) {});
   return out;
 }
-
-namespace detail {
 
 CodeSpan code_span(std::string_view line, const Dialect& dialect) {
   CodeSpan span;

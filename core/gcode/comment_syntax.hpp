@@ -35,6 +35,10 @@ struct CodeSpan {
 };
 CodeSpan code_span(std::string_view line, const Dialect& dialect);
 
+// line_comments() (gcode.hpp) by the scanner alone, without its shortcut for lines that hold
+// no character a comment or string begins or ends with: what the shortcut is tested against.
+LineComments scanned_line_comments(std::string_view line, const Dialect& dialect);
+
 // The ')' that closes the comment opened at line[open] (the first one, or the balancing one
 // where the dialect nests comments); npos when the line ends first.
 std::size_t comment_close(std::string_view line, std::size_t open, const Dialect& dialect);

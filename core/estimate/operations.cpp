@@ -225,13 +225,17 @@ std::string operation_name_in(std::string_view comment) {
 
 OperationTracker::OperationTracker(const SourceFile& source, const Dialect& dialect)
     : source_(source), dialect_(dialect) {
-  for (std::size_t i = 0; i < source.lines.size(); ++i) {
-    const auto text = comment_of_line(source.line_text(i), dialect);
-    if (text && !operation_name_in(*text).empty()) comment_lines_.push_back(int(i));
-  }
   Op lead;
   lead.summary.line = -1;
   ops_.push_back(lead);
+}
+
+void OperationTracker::find_comments_before(int line) {
+  const std::size_t end = std::min(std::size_t(std::max(line, 0)), source_.lines.size());
+  for (; comments_read_ < end; ++comments_read_) {
+    const auto text = comment_of_line(source_.line_text(comments_read_), dialect_);
+    if (text && !operation_name_in(*text).empty()) comment_lines_.push_back(int(comments_read_));
+  }
 }
 
 std::size_t OperationTracker::start(int line, int comment_line, const CanonCommand& command,
@@ -270,6 +274,7 @@ std::size_t OperationTracker::take(const CanonCommand& command, const TimedComma
   const int at = command.call_line;
   std::optional<int> comment; // the first one there
   auto first_between = [&](int after, int before) -> std::optional<int> {
+    find_comments_before(before);
     const auto it = std::upper_bound(comment_lines_.begin(), comment_lines_.end(), after);
     if (it != comment_lines_.end() && *it < before) return *it;
     return std::nullopt;

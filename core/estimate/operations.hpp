@@ -58,7 +58,12 @@ private:
 
   const SourceFile& source_;
   const Dialect& dialect_;
-  std::vector<int> comment_lines_; // sorted: comment-only lines that may start an operation
+  // Sorted: comment-only lines that may start an operation, of the lines before
+  // comments_read_. Read as the program runs (find_comments_before): a queue of a million
+  // lines is a serial stretch before the first command is folded otherwise.
+  std::vector<int> comment_lines_;
+  std::size_t comments_read_ = 0;
+  void find_comments_before(int line);
   std::vector<Op> ops_;
   std::map<int, std::size_t> by_line_; // an operation's start line (a loop runs it again)
   std::size_t current_ = 0;

@@ -40,13 +40,16 @@ ResultFolder::ResultFolder(const SourceFile& source, const Dialect& dialect,
                            Estimate& out)
     : source_(source), dialect_(dialect), power_constants_(power), options_(options),
       removals_(std::move(removals)), setups_(std::move(setups)), out_(out),
-      expected_commands_(expected_commands), lines_(source.lines.size()),
+      expected_commands_(expected_commands), line_count_(source.lines.size()),
       energy_(power, options.energy), operations_(source, dialect) {
   for (const SetupStart& start : starts)
     setup_totals_.push_back(SetupSummary{start.line, start.reason});
   for (const RemovalSimulator* r : removals_)
     guessed_setups_.push_back(r->stock_source() == StockSource::Guessed);
   if (setup_totals_.empty()) setup_totals_.push_back(SetupSummary{0, "the program's start"});
+  // The lines' memory is taken now and written as the lines run (fold): zeroing 110 bytes a
+  // line of a million-line program was a serial stretch before the stream.
+  lines_.reserve(line_count_);
 }
 
 void ResultFolder::take(const RemovedBatch& batch) {
@@ -128,7 +131,8 @@ void ResultFolder::fold(const CanonCommand& command, const TimedCommand& timed,
   time_.add(command.kind, timed.duration_s, removed_mm3 > 0, removal_known);
   operations_.add(operation, command.kind, timed.duration_s, energy.energy_j, energy.components_j,
                   removed_mm3, removal_known);
-  if (timed.line < 0 || std::size_t(timed.line) >= lines_.size()) return;
+  if (timed.line < 0 || std::size_t(timed.line) >= line_count_) return;
+  if (std::size_t(timed.line) >= lines_.size()) lines_.resize(std::size_t(timed.line) + 1);
   LineSummary& b = lines_[std::size_t(timed.line)];
   b.removed_mm3 += removed_mm3;
   if (removed) b.mrr_peak_mm3_s = std::max(b.mrr_peak_mm3_s, float(removed->mrr_peak_mm3_s));
@@ -275,6 +279,7 @@ void ResultFolder::finish(double total_s) {
   out_.series.mrr_mm3_s = mrr_.result();
   out_.path = path_.result();
 
+  lines_.resize(line_count_); // the lines after the last that ran
   // Operations: names look no further than the lines that cut.
   std::vector<std::uint16_t> index_map;
   out_.operations = operations_.finish(

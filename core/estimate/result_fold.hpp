@@ -60,7 +60,8 @@ private:
   std::size_t last_progress_ = 0; // commands folded at the last progress report
 
   // What is kept.
-  std::vector<LineSummary> lines_; // one per source line while running
+  std::size_t line_count_;         // of the source
+  std::vector<LineSummary> lines_; // one per source line while running, up to the last that ran
   EnergyIntegrator energy_;
   OperationTracker operations_;
   TimeSplit time_;

@@ -16,6 +16,8 @@
 #include <string_view>
 #include <vector>
 
+#include "shortest_number.hpp"
+
 namespace ncjoule::report_detail {
 
 class JsonWriter {
@@ -151,22 +153,22 @@ inline JsonWriter& JsonWriter::key(std::string_view name) {
 inline void JsonWriter::value(double number) {
   if (!std::isfinite(number)) return null();
   before_value();
-  char* p = room(32);
+  char* p = room(kShortestNumberRoom);
   if (std::fabs(number) < kWholeDigitsBelow && number == std::trunc(number))
     p = put_whole(p, number);
   else
-    p = std::to_chars(p, p + 32, number).ptr;
+    p = write_shortest(p, number);
   used_ = std::size_t(p - buffer_.get());
 }
 
 inline void JsonWriter::value(float number) {
   if (!std::isfinite(number)) return null();
   before_value();
-  char* p = room(32);
+  char* p = room(kShortestNumberRoom);
   if (std::fabs(number) < float(kWholeDigitsBelow) && number == std::trunc(number))
     p = put_whole(p, double(number));
   else
-    p = std::to_chars(p, p + 32, number).ptr;
+    p = write_shortest(p, number);
   used_ = std::size_t(p - buffer_.get());
 }
 

@@ -23,6 +23,7 @@
 #include "move_limits.hpp"
 #include "ncjoule/kinematics.hpp"
 #include "sampling.hpp"
+#include "slot_queue.hpp"
 #include "timed_span.hpp"
 #include "velocity_profile.hpp"
 #include "warnings.hpp"
@@ -98,7 +99,7 @@ struct Planner::Impl {
   SpeedPlanFront front;
   std::size_t batch;           // options.look_ahead_batch, at least 1
   std::size_t next_look_ahead; // pending items at which to look ahead again
-  std::deque<WaitingCommand> waiting;
+  SlotQueue<WaitingCommand> waiting;
   std::size_t first_waiting = 0; // number of the command at the front of `waiting`
   std::size_t next_number = 0;   // number the next command gets
   bool finished = false;
@@ -139,8 +140,7 @@ Planner::Impl::Impl(const MachineProfile& machine, const PlanOptions& o, Sink s)
 }
 
 void Planner::Impl::add(const CanonCommand& c) {
-  waiting.push_back(WaitingCommand{c, TimedCommand{}, MovePlan{}});
-  WaitingCommand& w = waiting.back();
+  WaitingCommand& w = waiting.push_back(WaitingCommand{c, TimedCommand{}, MovePlan{}});
   w.timed.command = next_number++;
   w.timed.line = c.line;
   w.timed.kind = c.kind;

@@ -74,9 +74,12 @@ void Interpreter::convert_motion(BlockValues& v, bool axes_used) {
         error(v.column['g' - 'a'], "feed move with no feed rate (F word missing or zero)");
       if (v.has_axis()) {
         const Pose end = target_from_words(v, g53);
-        CanonCommand probe_length = make(CanonKind::Feed);
-        probe_length.end = end;
-        inverse_time_feed(move_length(probe_length), v);
+        if (state_.feed_mode == FeedMode::InverseTime && v.has('f')) {
+          // The move's length sets its feed (only here: it is a tenth of the work of a G1).
+          CanonCommand probe_length = make(CanonKind::Feed);
+          probe_length.end = end;
+          inverse_time_feed(move_length(probe_length), v);
+        }
         straight(CanonKind::Feed, end, {}, g53 ? named_axes(v) : 0);
       }
       break;

@@ -72,7 +72,7 @@ PathBuilder::PathBuilder(const Kinematics& machine, ItemWindow& items, ChargeSin
   rapid_bounds_ = {feed_bounds_.accel, {a[0].rapid_mm_s, a[1].rapid_mm_s, a[2].rapid_mm_s}};
 }
 
-void PathBuilder::move(std::size_t index, const CanonCommand& c) {
+void PathBuilder::move(std::size_t index, const CanonCommand& c, const MoveLimits* limits) {
   if ((c.kind == CanonKind::Feed || c.kind == CanonKind::Arc) &&
       naive_cam_.offer(index, c, naive_tolerance_))
     return;
@@ -84,7 +84,7 @@ void PathBuilder::move(std::size_t index, const CanonCommand& c) {
     queue(std::move(s), {Member{index, length}});
     return;
   }
-  send(MergedLine{c.start, c.end, &c, {Member{index, move_length(c)}}});
+  send(MergedLine{c.start, c.end, &c, {Member{index, move_length(c)}}}, limits);
 }
 
 bool PathBuilder::event(const CanonCommand& c) {
@@ -144,8 +144,8 @@ void PathBuilder::stop() {
   flowing_ = false;
 }
 
-void PathBuilder::send(MergedLine&& line) {
-  Segment s = line_segment(*line.last, line.start, line.end);
+void PathBuilder::send(MergedLine&& line, const MoveLimits* limits) {
+  Segment s = line_segment(*line.last, line.start, line.end, limits);
   apply_state(s, *line.last);
   queue(std::move(s), std::move(line.members));
 }
@@ -269,17 +269,21 @@ void PathBuilder::apply_state(Segment& s, const CanonCommand& c) {
 }
 
 // A straight move as emccanon sends it: the feed, capped so that no axis exceeds its limit along
-// the line, and the acceleration of the slowest axis along it.
-Segment PathBuilder::line_segment(const CanonCommand& last, const Pose& start,
-                                  const Pose& end) const {
-  CanonCommand chord;
-  // An arc the naive-CAM detector took in is run as part of a straight move.
-  chord.kind = last.kind == CanonKind::Arc ? CanonKind::Feed : last.kind;
-  chord.line = last.line;
-  chord.start = start;
-  chord.end = end;
-  chord.state = last.state;
-  const MoveLimits m = move_limits(chord, machine_, scratch_);
+// the line, and the acceleration of the slowest axis along it. `limits`: those of the line
+// from start to end, where the caller has them (a line sent as it is: `last` itself).
+Segment PathBuilder::line_segment(const CanonCommand& last, const Pose& start, const Pose& end,
+                                  const MoveLimits* limits) const {
+  auto chord_limits = [&] {
+    CanonCommand chord;
+    // An arc the naive-CAM detector took in is run as part of a straight move.
+    chord.kind = last.kind == CanonKind::Arc ? CanonKind::Feed : last.kind;
+    chord.line = last.line;
+    chord.start = start;
+    chord.end = end;
+    chord.state = last.state;
+    return move_limits(chord, machine_, scratch_);
+  };
+  const MoveLimits m = limits ? *limits : chord_limits();
   Segment s;
   s.shape = Shape::Line;
   s.start = xyz(start);

@@ -43,8 +43,9 @@ public:
   using ChargeSink = std::function<void(std::size_t command, const Charge&)>;
   PathBuilder(const Kinematics& machine, ItemWindow& items, ChargeSink sink);
 
-  // A move LinuxCNC's planner queues (G0, G1, G2/G3 with a length).
-  void move(std::size_t index, const CanonCommand& c);
+  // A move LinuxCNC's planner queues (G0, G1, G2/G3 with a length). `limits`, where given, are
+  // move_limits(c): a line sent as it is needs them again, not worked out twice.
+  void move(std::size_t index, const CanonCommand& c, const MoveLimits* limits = nullptr);
   // Any other command: a new F, G61/G64 or G93/G94 ends a naive-CAM group; the commands task
   // waits on (spindle, coolant, tool change, dwell, offsets, messages, stops) empty the queue.
   // True for those: task runs them with the machine at rest (kTaskLatency_s each).
@@ -61,13 +62,15 @@ public:
   }
 
 private:
-  void send(MergedLine&& line); // a straight move as the planner receives it
+  // A straight move as the planner receives it; `limits`: the line's move_limits, where known.
+  void send(MergedLine&& line, const MoveLimits* limits = nullptr);
   void queue(Segment&& s, std::vector<Member>&& members);
   // `continues`: the last line charged with the pending segment goes on in the next one.
   void settle(std::optional<Segment> blend, bool consumed, double consumed_length, double exit_cap,
               bool continues);
   std::uint32_t push(const Segment& s, double exit_cap);
-  Segment line_segment(const CanonCommand& state_from, const Pose& start, const Pose& end) const;
+  Segment line_segment(const CanonCommand& state_from, const Pose& start, const Pose& end,
+                       const MoveLimits* limits) const;
   Segment circle_segment(const CanonCommand& c) const;
   void apply_state(Segment& s, const CanonCommand& c);
 

@@ -194,7 +194,7 @@ void Planner::Impl::limit_and_chain(WaitingCommand& w) {
     if (task_waiting > 0 && last_move != kNone) rest_after.emplace_back(last_move, task_waiting);
     task_waiting = 0;
     last_move = i;
-    linuxcnc_path->move(i, c);
+    linuxcnc_path->move(i, c, &limits);
     return;
   }
   if (previous_flows)

@@ -46,6 +46,15 @@ void set_motion(OperatingPoint& op, const std::array<double, 3>& d, double speed
   op.mrr_mm3_s = mrr_mm3_s;
 }
 
+// The same point at another path speed along the same step: what set_motion(op, d, speed, ...)
+// would give on a copy of `op` made by it for that step.
+void set_speed(OperatingPoint& op, const std::array<double, 3>& d, double speed_mm_s) {
+  const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+  for (int i = 0; i < 3; ++i)
+    op.axis_speed_mm_s[i] =
+        op.axis_moving[i] > 0 && length > 0 ? speed_mm_s * std::abs(d[i]) / length : 0.0;
+}
+
 // The mean radial engagement of a step that removed `volume` at depth of cut `depth` over
 // `across` mm of XY travel; 0 where the step has no depth or goes straight down.
 double radial_width(double volume, double depth, double across) {
@@ -88,19 +97,27 @@ void add_move_segments(std::size_t index, const CanonCommand& cmd, const TimedCo
   for (std::size_t k = 0; k + 1 < s.size(); ++k) {
     const double dt = s[k + 1].t_s - s[k].t_s;
     if (!(dt > 0)) continue;
-    auto d = displacement(s[k].position, s[k + 1].position);
-    const double across = std::hypot(d[0], d[1]); // the step's own travel, before any stand-in
-    if (norm(d) <= kStillMm) d = whole;           // direction of a step too short to have its own
+    const auto step = displacement(s[k].position, s[k + 1].position);
+    // Direction of a step too short to have its own: the move's.
+    const auto& d = norm(step) <= kStillMm ? whole : step;
     double volume = 0;
     if (removal && k < removal->step_volume_mm3.size()) volume = removal->step_volume_mm3[k];
     const double mrr = std::max(0.0, volume) / dt;
-    OperatingPoint a = base, b = base;
-    set_motion(a, d, s[k].speed_mm_s, mrr, travel);
-    set_motion(b, d, s[k + 1].speed_mm_s, mrr, travel);
-    if (removal && k < removal->step_depth_mm.size())
-      a.radial_width_mm = b.radial_width_mm =
-          radial_width(volume, removal->step_depth_mm[k], across);
-    out.push_back({index, s[k].t_s, s[k + 1].t_s, a, b});
+    // Made in place, the end from the start: the two differ only in the speed.
+    OperatingSegment& seg = out.emplace_back();
+    seg.command = index;
+    seg.t0_s = s[k].t_s;
+    seg.t1_s = s[k + 1].t_s;
+    seg.start = base;
+    set_motion(seg.start, d, s[k].speed_mm_s, mrr, travel);
+    seg.end = seg.start;
+    set_speed(seg.end, d, s[k + 1].speed_mm_s);
+    if (removal && k < removal->step_depth_mm.size()) {
+      const double depth = removal->step_depth_mm[k];
+      // The step's own travel across XY (not a stand-in's), where a width can come of it.
+      const double across = volume > 0 && depth > 0 ? std::hypot(step[0], step[1]) : 0.0;
+      seg.start.radial_width_mm = seg.end.radial_width_mm = radial_width(volume, depth, across);
+    }
   }
 }
 

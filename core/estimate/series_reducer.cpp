@@ -15,7 +15,11 @@ void SeriesReducer::add(double t_s, double value) {
     if (raw_.size() > 2 * capacity_) start_buckets();
     return;
   }
+  // The point put last again (a segment's end is the next one's start): its bucket already
+  // holds it between its lowest and highest, so putting it again changes nothing.
+  if (p.t == last_.t && p.v == last_.v) return;
   put(p);
+  last_ = p;
 }
 
 void SeriesReducer::start_buckets() {

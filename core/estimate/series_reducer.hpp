@@ -2,6 +2,7 @@
 // few thousand points, so that a long program needs no more memory for them than a short one.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -37,6 +38,7 @@ private:
   std::vector<Bucket> buckets_;
   bool bucketed_ = false;
   double t0_ = 0, width_ = 0;
+  Point last_{std::nan(""), 0}; // the point put last once bucketed (none: NaN, equal to none)
 };
 
 // The toolpath for drawing, reduced to at most about `max_points`: a point is kept when the tool

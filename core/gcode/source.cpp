@@ -1,6 +1,8 @@
 // Splitting NC text into lines, and formatting diagnostics.
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
 
 #include "ncjoule/gcode.hpp"
 
@@ -13,6 +15,19 @@ SourceFile make_source(std::string path, std::string text) {
   const std::string& t = file.text;
   std::size_t begin = 0;
   const std::size_t n = t.size();
+  if (t.find('\r') == std::string::npos) {
+    // Line feeds alone (nearly every program): found by memchr, the lines counted first. Byte by
+    // byte, with the list growing, this was a twentieth of estimating a 1M-line program, before
+    // anything else could start.
+    file.lines.reserve(std::size_t(std::count(t.begin(), t.end(), '\n')) + 1);
+    while (begin < n) {
+      const void* found = std::memchr(t.data() + begin, '\n', n - begin);
+      const std::size_t i = found ? std::size_t(static_cast<const char*>(found) - t.data()) : n;
+      file.lines.push_back(LineSpan{begin, i - begin, std::uint8_t(i < n ? 1 : 0)});
+      begin = i + 1;
+    }
+    return file;
+  }
   while (begin < n) {
     std::size_t i = begin;
     while (i < n && t[i] != '\n' && t[i] != '\r')

@@ -1,6 +1,11 @@
 // The lexer keeps every byte of a line and cuts its code into words.
 #include <doctest/doctest.h>
 
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
 #include "block.hpp"
 
 using namespace ncjoule;
@@ -32,6 +37,44 @@ TEST_CASE("source lines keep their exact bytes and line endings") {
   for (const LineSpan& l : f.lines)
     back += text.substr(l.begin, l.length + l.eol_length);
   CHECK(back == text);
+}
+
+TEST_CASE("source lines of random texts, with and without CR, are the line endings' spans") {
+  // LF, CRLF or a lone CR ends a line (the text without any CR takes a faster way): every
+  // line's span as a plain reading of the text gives it, and the lines put back are the text.
+  std::mt19937 rng(13);
+  const std::string alphabet = "G1 X2.5\n\n;()";
+  int lines_seen = 0;
+  for (int n = 0; n < 3000; ++n) {
+    std::string text;
+    const bool with_cr = n % 2 == 0;
+    const int length = int(rng() % 40);
+    for (int k = 0; k < length; ++k)
+      text += with_cr && rng() % 6 == 0 ? '\r' : alphabet[rng() % alphabet.size()];
+    std::vector<LineSpan> expected;
+    for (std::size_t begin = 0; begin < text.size();) {
+      std::size_t i = begin;
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r')
+        ++i;
+      std::uint8_t eol = 0;
+      if (i < text.size())
+        eol = text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n' ? 2 : 1;
+      expected.push_back({begin, i - begin, eol});
+      begin = i + eol;
+    }
+    const SourceFile f = make_source("t.nc", text);
+    REQUIRE(f.lines.size() == expected.size());
+    std::string back;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      CHECK(f.lines[i].begin == expected[i].begin);
+      CHECK(f.lines[i].length == expected[i].length);
+      CHECK(f.lines[i].eol_length == expected[i].eol_length);
+      back += text.substr(f.lines[i].begin, f.lines[i].length + f.lines[i].eol_length);
+    }
+    CHECK(back == text);
+    lines_seen += int(f.lines.size());
+  }
+  CHECK(lines_seen > 10000);
 }
 
 TEST_CASE("words, lower case, blanks inside numbers and comments") {

@@ -14,10 +14,13 @@ std::string mib(std::size_t bytes) {
   return m > 0 ? std::to_string(m) + " MiB" : std::to_string(bytes) + " bytes";
 }
 
-// Reads until the end or until more than `max_bytes` came; `too_large` says which.
-bool read_all(std::FILE* f, std::size_t max_bytes, std::string& text, bool& too_large) {
+// Reads until the end or until more than `max_bytes` came; `too_large` says which. `expected`:
+// the size the file says it has (0: unknown), taken at once rather than grown into.
+bool read_all(std::FILE* f, std::size_t max_bytes, std::string& text, bool& too_large,
+              std::size_t expected = 0) {
   std::array<char, 1 << 16> buffer{};
   too_large = false;
+  text.reserve(std::min(expected, max_bytes));
   for (;;) {
     const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), f);
     if (n > 0) {
@@ -48,7 +51,9 @@ std::optional<std::string> read_text_file(const std::string& path, std::string_v
     return std::nullopt;
   };
   struct stat info {};
+  std::size_t expected = 0;
   if (::stat(path.c_str(), &info) == 0) {
+    if (S_ISREG(info.st_mode)) expected = std::size_t(info.st_size);
     if (S_ISDIR(info.st_mode)) return fail("is a directory, not " + std::string(what));
     // A regular file's size is known before a byte is read.
     if (S_ISREG(info.st_mode) && std::size_t(info.st_size) > max_bytes)
@@ -58,7 +63,7 @@ std::optional<std::string> read_text_file(const std::string& path, std::string_v
   if (!f) return fail("cannot be opened: " + std::string(std::strerror(errno)));
   std::string text;
   bool too_large = false;
-  const bool read = read_all(f, max_bytes, text, too_large);
+  const bool read = read_all(f, max_bytes, text, too_large, expected);
   std::fclose(f);
   if (too_large) return fail(too_large_message(max_bytes, what, limit_option));
   if (!read) return fail("could not be read to the end");

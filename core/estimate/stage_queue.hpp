@@ -31,6 +31,10 @@ public:
     filling_.reserve(batch_size_);
   }
 
+  // Batches whose memory the stage before took anew (the others came back from the stage
+  // after): a few more than max_batches however many items pass (for tests).
+  std::size_t batches_made() const { return batches_made_; }
+
   // --- the stage before ----------------------------------------------------------------------
   // Adds an item; hands the batch over when it is full (waiting while max_batches wait). Throws
   // StageAbandoned when the stage after has stopped.
@@ -59,8 +63,12 @@ public:
   // --- the stage after -----------------------------------------------------------------------
   // The next batch in `batch` (its items to be moved from); false at the end. Rethrows the
   // stage before's failure.
+  // `batch`'s memory (the batch popped before) goes back to the stage before, for a later
+  // batch: no batch is allocated on one thread and freed on the other once the queue runs.
   bool pop(std::vector<T>& batch) {
+    batch.clear();
     std::unique_lock lock(mutex_);
+    if (batch.capacity() > 0) spare_.push_back(std::move(batch));
     ready_.wait(lock, [&] { return !waiting_.empty() || finished_; });
     if (waiting_.empty()) {
       if (failure_) std::rethrow_exception(failure_);
@@ -95,8 +103,13 @@ private:
     }
     waiting_.push_back(std::move(filling_));
     ready_.notify_one();
-    lock.unlock();
     filling_ = {};
+    if (!spare_.empty()) {
+      filling_ = std::move(spare_.back());
+      spare_.pop_back();
+    }
+    lock.unlock();
+    if (filling_.capacity() == 0) ++batches_made_;
     filling_.reserve(batch_size_);
   }
 
@@ -106,6 +119,8 @@ private:
   std::mutex mutex_;
   std::condition_variable ready_, room_;
   std::deque<std::vector<T>> waiting_;
+  std::vector<std::vector<T>> spare_; // batches the stage after is done with, emptied
+  std::size_t batches_made_ = 1;      // the stage before's thread only
   bool finished_ = false, abandoned_ = false;
   std::exception_ptr failure_;
 };

@@ -1,6 +1,7 @@
 #include "json_writer.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -123,15 +124,23 @@ void JsonWriter::elements(std::size_t count,
   const std::size_t pieces = (count + kPiece - 1) / kPiece;
   const bool was_empty = levels_.back().empty;
   flush(); // the pieces' text follows what is written so far
+  // The longest piece made so far: the next piece's text takes that much room at once rather
+  // than growing into it (a copy of all it holds at every doubling).
+  std::atomic<std::size_t> longest{0};
   make_in_order<std::string>(
       pieces,
       [&](std::size_t piece) {
         std::string text;
+        const std::size_t expected = longest.load(std::memory_order_relaxed);
+        text.reserve(expected + expected / 8);
         JsonWriter w(text, *this, was_empty && piece == 0);
         const std::size_t end = std::min(count, (piece + 1) * kPiece);
         for (std::size_t i = piece * kPiece; i < end; ++i)
           element(w, i);
         w.flush();
+        std::size_t seen = longest.load(std::memory_order_relaxed);
+        while (text.size() > seen && !longest.compare_exchange_weak(seen, text.size()))
+          ;
         return text;
       },
       [&](const std::string& text) { put(text); });

@@ -14,6 +14,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "shortest_number.hpp"
@@ -64,6 +65,14 @@ public:
     key(name);
     value(v);
   }
+
+  // A key and a number as key() and value() write them inside a one-line object that holds a
+  // value already: `key_text` is the key as written there, with the comma before it
+  // (",\"time_s\":"). The same bytes without the bookkeeping of a value that may come anywhere:
+  // for the blocks of a large document, two dozen fields each.
+  template <class Number> void raw_field(std::string_view key_text, Number number);
+  // Text as it is, inside a one-line object (the brace closing what a raw key opened).
+  void raw_text(std::string_view text) { put(text); }
 
   // Writes `count` elements of the array open now, element(writer, i) writing the i-th, the
   // same bytes as writing them one after another here: pieces of elements are made on all cores
@@ -150,32 +159,53 @@ inline JsonWriter& JsonWriter::key(std::string_view name) {
   return *this;
 }
 
+// A finite number as value() writes it, at p (room for kShortestNumberRoom); returns the end.
+inline char* put_number(char* p, double number) {
+  if (std::fabs(number) < kWholeDigitsBelow && number == std::trunc(number))
+    return put_whole(p, number);
+  return write_shortest(p, number);
+}
+inline char* put_number(char* p, float number) {
+  if (std::fabs(number) < float(kWholeDigitsBelow) && number == std::trunc(number))
+    return put_whole(p, double(number));
+  return write_shortest(p, number);
+}
+inline char* put_number(char* p, std::int64_t number) {
+  return std::to_chars(p, p + 32, number).ptr;
+}
+
 inline void JsonWriter::value(double number) {
   if (!std::isfinite(number)) return null();
   before_value();
-  char* p = room(kShortestNumberRoom);
-  if (std::fabs(number) < kWholeDigitsBelow && number == std::trunc(number))
-    p = put_whole(p, number);
-  else
-    p = write_shortest(p, number);
-  used_ = std::size_t(p - buffer_.get());
+  used_ = std::size_t(put_number(room(kShortestNumberRoom), number) - buffer_.get());
 }
 
 inline void JsonWriter::value(float number) {
   if (!std::isfinite(number)) return null();
   before_value();
-  char* p = room(kShortestNumberRoom);
-  if (std::fabs(number) < float(kWholeDigitsBelow) && number == std::trunc(number))
-    p = put_whole(p, double(number));
-  else
-    p = write_shortest(p, number);
-  used_ = std::size_t(p - buffer_.get());
+  used_ = std::size_t(put_number(room(kShortestNumberRoom), number) - buffer_.get());
 }
 
 inline void JsonWriter::value(std::int64_t number) {
   before_value();
-  char* p = room(32);
-  used_ = std::size_t(std::to_chars(p, p + 32, number).ptr - buffer_.get());
+  used_ = std::size_t(put_number(room(32), number) - buffer_.get());
+}
+
+template <class Number> void JsonWriter::raw_field(std::string_view key_text, Number number) {
+  char* p = room(key_text.size() + kShortestNumberRoom);
+  std::memcpy(p, key_text.data(), key_text.size());
+  p += key_text.size();
+  if constexpr (std::is_floating_point_v<Number>) {
+    if (!std::isfinite(number)) {
+      std::memcpy(p, "null", 4);
+      used_ = std::size_t(p + 4 - buffer_.get());
+      return;
+    }
+    p = put_number(p, number);
+  } else {
+    p = put_number(p, std::int64_t(number));
+  }
+  used_ = std::size_t(p - buffer_.get());
 }
 
 } // namespace ncjoule::report_detail

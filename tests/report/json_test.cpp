@@ -4,10 +4,15 @@
 // the full one.
 #include <doctest/doctest.h>
 
+#include <bit>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "json_writer.hpp"
 #include "ncjoule/estimate.hpp"
@@ -156,6 +161,74 @@ TEST_CASE("numbers are written in the shortest form that reads back, zero and wh
     w.end_document(true);
   }
   CHECK(out.str() == "[0,-0,1,-325,99999,1e+05,1e+15,0.1,1.5e-07,0,-0,2,99999,1e+05,0.1]\n");
+}
+
+TEST_CASE("a block's raw fields are the bytes of key() and value()") {
+  // write_block writes its numbers with raw_field(): every kind of number, in a one-line object
+  // of an indented array as the JSON's blocks are, must come out as field() writes it.
+  std::mt19937_64 rng(21);
+  auto pick = [&](int i) {
+    switch (i % 6) {
+    case 0:
+      return double(rng() % 200000) - 100000.0; // whole, either side of 1e5
+    case 1:
+      return std::ldexp(double(rng() % 1000000), int(rng() % 80) - 60);
+    case 2:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 3:
+      return -0.0;
+    case 4:
+      return -std::numeric_limits<double>::infinity();
+    default:
+      return std::bit_cast<double>(rng());
+    }
+  };
+  int differ = 0, objects = 0;
+  for (int object = 0; object < 3000; ++object, ++objects) {
+    std::vector<double> values;
+    for (int i = 0; i < 12; ++i)
+      values.push_back(pick(i + object));
+    const auto count = std::uint32_t(rng());
+    std::ostringstream generic_out, raw_out;
+    {
+      JsonWriter generic(generic_out, 1), raw(raw_out, 1);
+      for (JsonWriter* w : {&generic, &raw}) {
+        w->begin_object();
+        w->key("blocks");
+        w->begin_array();
+        w->begin_object_on_one_line();
+        w->field("line", object);
+      }
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        const std::string name = "f" + std::to_string(i);
+        if (i % 2 == 0) {
+          generic.field(name, values[i]);
+          raw.raw_field(",\"" + name + "\":", values[i]);
+        } else {
+          generic.field(name, float(values[i]));
+          raw.raw_field(",\"" + name + "\":", float(values[i]));
+        }
+      }
+      generic.field("commands", count);
+      raw.raw_field(",\"commands\":", count);
+      generic.key("inner");
+      generic.begin_object();
+      generic.field("a", values[1]);
+      generic.end_object();
+      raw.raw_field(",\"inner\":{\"a\":", values[1]);
+      raw.raw_text("}");
+      for (JsonWriter* w : {&generic, &raw}) {
+        w->end_object();
+        w->end_array();
+        w->end_object();
+        w->end_document(true);
+      }
+    }
+    differ += generic_out.str() != raw_out.str();
+    if (object == 0) CHECK(generic_out.str() == raw_out.str());
+  }
+  CHECK(differ == 0);
+  CHECK(objects == 3000);
 }
 
 TEST_CASE("the document ends with its newline, never starts with it") {

@@ -57,6 +57,17 @@ std::uint64_t eight_digits(std::uint32_t n) {
 // The 17 digits of n < 10^17, zeros in front, at p[0..17), stored a word at a time.
 void write_seventeen_digits(char* p, std::uint64_t n) {
   constexpr std::uint64_t kEight = 100000000;
+  if (n < kEight) { // 8 digits at most (a float's, mostly): one word of them
+    std::memset(p, '0', 9);
+    const std::uint64_t word = eight_digits(std::uint32_t(n));
+    if constexpr (std::endian::native == std::endian::little) {
+      std::memcpy(p + 9, &word, 8);
+    } else {
+      for (int i = 0; i < 8; ++i)
+        p[9 + i] = char(word >> (8 * i));
+    }
+    return;
+  }
   const std::uint64_t high = n / kEight; // < 10^9
   const std::uint64_t words[2] = {eight_digits(std::uint32_t(high % kEight)),
                                   eight_digits(std::uint32_t(n % kEight))};

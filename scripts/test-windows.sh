@@ -74,14 +74,24 @@ export NCJOULE=$test_dir/ncjoule NCJOULE_EXE=$exe NCJOULE_LINUX=$linux NCJOULE_S
 
 failed=0
 run_test() { # name command...
-  local name=$1 start rc=0
+  local name=$1 start rc=0 note=""
   shift
   start=$(date +%s.%N)
   "$@" >"$test_dir/$name.log" 2>&1 || rc=$?
+  if [ "$rc" -ne 0 ] && [ "$rc" -ne 77 ]; then
+    # Wine now and then fails to start a process: no output at all and exit 1, once in a few
+    # hundred runs (a `compare --help`, or an estimate that passes on every other run). A test
+    # that fails runs once more; a failure of ncjoule's fails again. The first log is kept.
+    mv "$test_dir/$name.log" "$test_dir/$name.first.log"
+    rc=0
+    "$@" >"$test_dir/$name.log" 2>&1 || rc=$?
+    note="  (passed on its second run; the first: $test_dir/$name.first.log)"
+    grep -m3 '^FAIL' "$test_dir/$name.first.log" >&2 || true
+  fi
   local seconds
   seconds=$(echo "$(date +%s.%N) - $start" | bc)
   if [ "$rc" -eq 0 ]; then
-    results+=("$(printf 'pass  %-32s %6.1f s' "$name" "$seconds")")
+    results+=("$(printf 'pass  %-32s %6.1f s%s' "$name" "$seconds" "$note")")
   elif [ "$rc" -eq 77 ]; then # the test says why it cannot run here
     results+=("$(printf 'skip  %-32s %6.1f s  (%s)' "$name" "$seconds" "$(grep -m1 '^SKIP' "$test_dir/$name.log")")")
   else

@@ -25,13 +25,7 @@ std::optional<SourceFile> read_source(const std::string& path, std::size_t max_b
       path == "-" ? read_text_stream(stdin, name, "an NC file", problems, max_bytes, option)
                   : read_text_file(path, "an NC file", problems, max_bytes, option);
   if (text && memory_budget > 0) {
-    // Lines as make_source() splits them: LF, CRLF or a lone CR ends one (a text without CR
-    // counted at memchr's speed: nothing else runs while this does).
-    const std::string& t = *text;
-    std::size_t lines = 1 + std::size_t(std::count(t.begin(), t.end(), '\n'));
-    if (t.find('\r') != std::string::npos)
-      for (std::size_t i = 0; i < t.size(); ++i)
-        if (t[i] == '\r' && (i + 1 == t.size() || t[i + 1] != '\n')) ++lines;
+    const std::size_t lines = count_lines(*text);
     if (std::string problem = program_memory_problem(text->size(), lines, memory_budget);
         !problem.empty()) {
       problems.push_back({Severity::Error, name, 0, 0, std::move(problem)});

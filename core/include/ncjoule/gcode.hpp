@@ -56,6 +56,9 @@ inline constexpr int kAdditionalWorkOffsets = 300;
 
 // Splits text into lines; never fails.
 SourceFile make_source(std::string path, std::string text);
+// How many lines make_source() makes of `text` (LF, CRLF or a lone CR ends one), plus one: what
+// a program's memory is judged by before it is split.
+std::size_t count_lines(std::string_view text);
 
 // Reads the control's programs from folders, first folder first: for an O-number the file
 // named O9810, O9810.NC, 9810.nc (any case, any extension), for a LinuxCNC o<name> the file
